@@ -1,0 +1,48 @@
+//! The error type of the checked entry points.
+
+use core::fmt;
+
+/// What was wrong with an input. Every checked function returns one of these instead of
+/// panicking or producing NaN.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Error {
+    /// An input contains NaN or ±∞.
+    NonFinite,
+    /// A covariance is not symmetric within tolerance.
+    NotSymmetric,
+    /// A covariance has a negative eigenvalue beyond tolerance.
+    NotPositiveSemidefinite,
+    /// A matrix that must be inverted (a covariance in pose fusion, an information
+    /// matrix) is singular or not positive definite.
+    Singular,
+    /// A rotation part is not orthonormal with positive determinant within tolerance.
+    NotARotation,
+    /// A screw or joint axis has zero length.
+    ZeroAxis,
+    /// A collection input (samples, poses) is empty.
+    Empty,
+    /// The operation needs more inputs than were given (e.g. a sample covariance from
+    /// one sample).
+    TooFewSamples,
+    /// An output buffer is too small for the requested result.
+    BufferTooSmall,
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Error::NonFinite => "input contains NaN or infinity",
+            Error::NotSymmetric => "covariance is not symmetric",
+            Error::NotPositiveSemidefinite => "covariance is not positive semi-definite",
+            Error::Singular => "matrix is singular or not positive definite",
+            Error::NotARotation => "rotation part is not orthonormal with determinant +1",
+            Error::ZeroAxis => "axis has zero length",
+            Error::Empty => "no input elements",
+            Error::TooFewSamples => "too few samples",
+            Error::BufferTooSmall => "output buffer too small",
+        })
+    }
+}
+
+impl core::error::Error for Error {}

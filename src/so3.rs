@@ -1,0 +1,191 @@
+//! SO(3): the rotation group. Rotation vectors ω = θ·u (unit axis u, angle θ), the
+//! exponential map (Rodrigues), the logarithm and the left Jacobian.
+//!
+//! Conventions: a rotation matrix R maps vectors of the rotated frame into the reference
+//! frame (`x_ref = R · x_rot`, pytransform3d's `A2B`). [`hat`]`(ω)·x = ω × x`.
+//! Jacobians are *left* Jacobians: `Exp(ω + δ) ≈ Exp(J(ω)·δ)·Exp(ω)`.
+
+use crate::linalg::{Mat3, Matrix, Vec3, Vector};
+use crate::scalar::Real;
+
+/// The skew-symmetric (cross-product) matrix `[ω]×`, with `[ω]× · x = ω × x`.
+#[inline]
+pub fn hat<T: Real>(w: &Vec3<T>) -> Mat3<T> {
+    let [x, y, z] = w.0;
+    let o = T::ZERO;
+    Matrix([[o, -z, y], [z, o, -x], [-y, x, o]])
+}
+
+/// The inverse of [`hat`]: the vector of the skew part, `((M₂₁−M₁₂)/2, (M₀₂−M₂₀)/2,
+/// (M₁₀−M₀₁)/2)`. Exact for skew-symmetric input.
+#[inline]
+pub fn vee<T: Real>(m: &Mat3<T>) -> Vec3<T> {
+    let a = m.0;
+    Vector([
+        (a[2][1] - a[1][2]) * T::HALF,
+        (a[0][2] - a[2][0]) * T::HALF,
+        (a[1][0] - a[0][1]) * T::HALF,
+    ])
+}
+
+/// The coefficients of the SO(3)/SE(3) exponential for angle `t = ‖ω‖`:
+/// `a = sin t / t`, `b = (1 − cos t)/t²`, `c = (t − sin t)/t³`.
+///
+/// Below [`Real::SERIES`] the Taylor series to t⁴ is used (truncation < ε); above, the
+/// closed forms, whose cancellation error in `b` and `c` is ≈ ε/t² relative, i.e. ε
+/// absolute once multiplied by the t² of `W²`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ExpCoefficients<T> {
+    pub a: T,
+    pub b: T,
+    pub c: T,
+}
+
+impl<T: Real> ExpCoefficients<T> {
+    #[inline]
+    pub(crate) fn new(t: T) -> Self {
+        let t2 = t * t;
+        if t < T::SERIES {
+            let t4 = t2 * t2;
+            Self {
+                a: T::ONE - t2 / T::lit(6.0) + t4 / T::lit(120.0),
+                b: T::HALF - t2 / T::lit(24.0) + t4 / T::lit(720.0),
+                c: T::lit(1.0 / 6.0) - t2 / T::lit(120.0) + t4 / T::lit(5040.0),
+            }
+        } else {
+            let (s, c) = t.sin_cos_r();
+            Self {
+                a: s / t,
+                b: (T::ONE - c) / t2,
+                c: (t - s) / (t2 * t),
+            }
+        }
+    }
+}
+
+/// The coefficient `d = (1 − (t/2)·cot(t/2)) / t²` of `W²` in the inverse left Jacobian.
+/// Series `1/12 + t²/720 + t⁴/30240` below [`Real::SERIES`]. Finite for t ∈ [0, 2π).
+#[inline]
+pub(crate) fn jinv_coefficient<T: Real>(t: T) -> T {
+    let t2 = t * t;
+    if t < T::SERIES {
+        T::lit(1.0 / 12.0) + t2 / T::lit(720.0) + t2 * t2 / T::lit(30240.0)
+    } else {
+        let half = t * T::HALF;
+        let (s, c) = half.sin_cos_r();
+        (T::ONE - half * c / s) / t2
+    }
+}
+
+/// `I + a·W + b·W²` for `W = [w]×`, without forming W².
+#[inline]
+pub(crate) fn i_plus_aw_bw2<T: Real>(w: &Vec3<T>, a: T, b: T) -> Mat3<T> {
+    let [x, y, z] = w.0;
+    let (xx, yy, zz) = (x * x, y * y, z * z);
+    let (xy, xz, yz) = (x * y, x * z, y * z);
+    Matrix([
+        [T::ONE - b * (yy + zz), b * xy - a * z, b * xz + a * y],
+        [b * xy + a * z, T::ONE - b * (xx + zz), b * yz - a * x],
+        [b * xz - a * y, b * yz + a * x, T::ONE - b * (xx + yy)],
+    ])
+}
+
+/// Exponential map `Exp(ω)`: the rotation by angle ‖ω‖ about ω (Rodrigues' formula
+/// `R = I + (sin θ/θ)·W + ((1 − cos θ)/θ²)·W²`, `W = [ω]×`).
+///
+/// Corresponds to pytransform3d's `matrix_from_compact_axis_angle`. Accuracy: absolute
+/// error of a few ε in every element for any ω (no angle wrapping is needed; sin and cos
+/// are periodic). Non-finite input gives non-finite output.
+#[inline]
+pub fn exp<T: Real>(w: &Vec3<T>) -> Mat3<T> {
+    let k = ExpCoefficients::new(w.norm());
+    i_plus_aw_bw2(w, k.a, k.b)
+}
+
+/// Logarithm as unit axis and angle: `R = Exp(angle · axis)` with angle ∈ [0, π].
+///
+/// Method (pytransform3d 3.17 `axis_angle_from_matrix`): angle = atan2(½‖r‖, (tr R − 1)/2)
+/// with r the skew part `(R₂₁−R₁₂, R₀₂−R₂₀, R₁₀−R₀₁)`; axis = r/‖r‖, except within
+/// [`Real::NEAR_PI`] of π, where r carries no information and the axis is read from the
+/// symmetric part, `u·uᵀ = (S − cos θ·I)/(1 − cos θ)` (the column of the largest diagonal
+/// element, its sign fixed by r; at exactly π the largest component is positive, as in
+/// the reference). Angle 0 returns axis (1, 0, 0). Accuracy: a few ε for orthonormal R;
+/// never NaN for finite input. The input need not be exactly orthonormal.
+pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
+    let m = rot.0;
+    let r = Vector([m[2][1] - m[1][2], m[0][2] - m[2][0], m[1][0] - m[0][1]]);
+    let cos = ((rot.trace() - T::ONE) * T::HALF).max(-T::ONE).min(T::ONE);
+    let rn = r.norm();
+    let angle = (rn * T::HALF).atan2(cos);
+    let x_axis = Vector([T::ONE, T::ZERO, T::ZERO]);
+    if angle == T::ZERO || !angle.is_finite() {
+        return (x_axis, angle);
+    }
+    if T::PI() - angle >= T::NEAR_PI {
+        return (r.scale(T::ONE / rn), angle);
+    }
+    // Near π: u uᵀ = (S − c I)/(1 − c), S the symmetric part.
+    let sym = rot.symmetrize();
+    let denom = T::ONE / (T::ONE - cos);
+    let d = sym.diagonal().map(|x| ((x - cos) * denom).max(T::ZERO).min(T::ONE));
+    let mut k = 0;
+    for i in 1..3 {
+        if d.0[i] > d.0[k] {
+            k = i;
+        }
+    }
+    let uk = d.0[k].sqrt();
+    let mut a = Vector::<T, 3>::zeros();
+    for (j, aj) in a.0.iter_mut().enumerate() {
+        *aj = if j == k {
+            uk
+        } else {
+            sym.0[k][j] * denom / uk
+        };
+    }
+    if angle < T::PI() && a.dot(&r) < T::ZERO {
+        a = -a;
+    }
+    let n = a.norm();
+    if !(n > T::ZERO) || !n.is_finite() {
+        return (x_axis, angle);
+    }
+    (a.scale(T::ONE / n), angle)
+}
+
+/// Logarithm `Log(R)`: the rotation vector ω = angle · axis with ‖ω‖ ∈ [0, π]
+/// (see [`log_axis_angle`] for method and accuracy).
+///
+/// Corresponds to pytransform3d's `compact_axis_angle_from_matrix`.
+#[inline]
+pub fn log<T: Real>(rot: &Mat3<T>) -> Vec3<T> {
+    let (axis, angle) = log_axis_angle(rot);
+    axis.scale(angle)
+}
+
+/// Left Jacobian of SO(3): `J(ω) = I + ((1 − cos θ)/θ²)·W + ((θ − sin θ)/θ³)·W²`.
+///
+/// Corresponds to pytransform3d's `left_jacobian_SO3`; series below [`Real::SERIES`].
+#[inline]
+pub fn left_jacobian<T: Real>(w: &Vec3<T>) -> Mat3<T> {
+    let k = ExpCoefficients::new(w.norm());
+    i_plus_aw_bw2(w, k.b, k.c)
+}
+
+/// Inverse left Jacobian of SO(3): `J⁻¹(ω) = I − ½W + ((1 − (θ/2)cot(θ/2))/θ²)·W²`.
+///
+/// Corresponds to pytransform3d's `left_jacobian_SO3_inv`; series below [`Real::SERIES`].
+/// Singular (infinite) at θ = 2π·k, k ≠ 0; finite for θ < 2π.
+#[inline]
+pub fn left_jacobian_inv<T: Real>(w: &Vec3<T>) -> Mat3<T> {
+    let d = jinv_coefficient(w.norm());
+    i_plus_aw_bw2(w, -T::HALF, d)
+}
+
+/// `true` if `rot` is a rotation within tolerance `tol`: finite, `‖RᵀR − I‖_max ≤ tol` and
+/// `det R > 0`.
+pub fn is_rotation<T: Real>(rot: &Mat3<T>, tol: T) -> bool {
+    rot.is_finite()
+        && (rot.transpose() * *rot - Mat3::identity()).amax() <= tol
+        && rot.determinant() > T::ZERO
+}
