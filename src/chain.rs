@@ -1,9 +1,12 @@
 //! Kinematic chains: screw axes in the base frame, the home pose of the tip, joint kinds
 //! and limits; rigid forward kinematics and the PPOE.
 
-use crate::linalg::Vec6;
+use crate::error::Error;
+use crate::linalg::{Mat3, Mat6, Matrix, Vec3, Vec6};
 use crate::scalar::Real;
-use crate::se3::Transform;
+use crate::se3::{self, Transform};
+use crate::so3;
+use crate::uncertainty::{check_covariance, concat_globally, Order};
 
 /// The kind of a moving joint.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -82,4 +85,337 @@ impl<T: Real, const N: usize> Chain<T, N> {
             home,
         }
     }
+}
+
+/// Which covariance the PPOE returns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Convention {
+    /// Right (local) perturbation of the returned pose: `T = T̄·Exp(η)`, η ~ N(0, Σ),
+    /// η in the tip frame. `Σ = Ad(M⁻¹)·C·Ad(M⁻¹)ᵀ`. The default: Monte Carlo puts it
+    /// within 1.4–5.6 % of the true distribution at the seed's noise (MATH.md §8).
+    #[default]
+    Right,
+    /// Left (global) perturbation: `T = Exp(η)·T̄`, η in the base frame,
+    /// `Σ_left = Ad(T̄)·Σ_right·Ad(T̄)ᵀ` — the convention of the rest of
+    /// pytransform3d's `uncertainty` module.
+    Left,
+    /// pytransform3d's example, reproduced exactly: `Ad(M)·C·Ad(M)ᵀ` in the last step,
+    /// and continuous joints clipped to their stated limits. For migration and
+    /// comparison only: it is the covariance of neither perturbation (164 % median error
+    /// on the seed robot, MATH.md §8).
+    Pytransform3d,
+}
+
+/// A pose and the covariance of its exponential-coordinate perturbation (rotation
+/// first); the [`Convention`] that produced it says which perturbation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UncertainPose<T> {
+    /// The mean pose T̄ (tip to base).
+    pub pose: Transform<T>,
+    /// The 6×6 covariance.
+    pub cov: Mat6<T>,
+}
+
+/// A chain whose joints live in a slice: the runtime-sized counterpart of [`Chain`]
+/// (used by host tools that load a URDF at run time). Same algorithms, same code path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ChainRef<'a, T> {
+    /// The moving joints from base to tip.
+    pub joints: &'a [Joint<T>],
+    /// The home pose M: tip to base at θ = 0.
+    pub home: Transform<T>,
+}
+
+/// `np.clip` semantics: `min(max(θ, lower), upper)`; NaN stays NaN, lower > upper gives
+/// upper.
+#[inline]
+fn clip<T: Real>(theta: T, lower: T, upper: T) -> T {
+    let x = if theta < lower { lower } else { theta };
+    if x > upper {
+        upper
+    } else {
+        x
+    }
+}
+
+impl<T: Real> Joint<T> {
+    /// The joint value clipped to the limits (`np.clip` semantics: NaN stays NaN).
+    /// Continuous joints are not clipped unless `clip_continuous` (pytransform3d does).
+    #[inline]
+    pub fn clip(&self, theta: T, clip_continuous: bool) -> T {
+        if self.kind == JointKind::Continuous && !clip_continuous {
+            theta
+        } else {
+            clip(theta, self.lower, self.upper)
+        }
+    }
+
+    /// The joint's displacement `Exp(S·θ)` (no clipping).
+    #[inline]
+    pub fn displacement(&self, theta: T) -> Transform<T> {
+        se3::exp(&self.screw.scale(theta))
+    }
+}
+
+impl<'a, T: Real> ChainRef<'a, T> {
+    /// Clips joint values to the limits into `out` (see [`Joint::clip`]).
+    pub fn clip(&self, thetas: &[T], out: &mut [T], clip_continuous: bool) -> Result<(), Error> {
+        if thetas.len() != self.joints.len() || out.len() != self.joints.len() {
+            return Err(Error::LengthMismatch);
+        }
+        for ((o, t), j) in out.iter_mut().zip(thetas).zip(self.joints) {
+            *o = j.clip(*t, clip_continuous);
+        }
+        Ok(())
+    }
+
+    /// Rigid forward kinematics `Exp(S₁θ₁)·…·Exp(Sₙθₙ)·M` after clipping θ to the limits.
+    pub fn forward_kinematics(&self, thetas: &[T]) -> Result<Transform<T>, Error> {
+        if thetas.len() != self.joints.len() {
+            return Err(Error::LengthMismatch);
+        }
+        let mut t = Transform::identity();
+        for (j, theta) in self.joints.iter().zip(thetas) {
+            t = t * j.displacement(j.clip(*theta, false));
+        }
+        Ok(t * self.home)
+    }
+
+    /// Space Jacobian (columns `Ad(D₁…Dᵢ₋₁)·Sᵢ`, twists in the base frame, rotation
+    /// first) at the clipped θ, written into `out` (one column per joint).
+    pub fn space_jacobian(&self, thetas: &[T], out: &mut [Vec6<T>]) -> Result<(), Error> {
+        if thetas.len() != self.joints.len() || out.len() != self.joints.len() {
+            return Err(Error::LengthMismatch);
+        }
+        let mut t = Transform::identity();
+        for ((col, j), theta) in out.iter_mut().zip(self.joints).zip(thetas) {
+            *col = t.adjoint() * j.screw;
+            t = t * j.displacement(j.clip(*theta, false));
+        }
+        Ok(())
+    }
+
+    /// Body Jacobian (columns `Ad(T(θ)⁻¹)·Jₛ,ᵢ`, twists in the tip frame, rotation first)
+    /// at the clipped θ, written into `out`.
+    pub fn body_jacobian(&self, thetas: &[T], out: &mut [Vec6<T>]) -> Result<(), Error> {
+        self.space_jacobian(thetas, out)?;
+        let ad = self.forward_kinematics(thetas)?.inverse().adjoint();
+        for col in out.iter_mut() {
+            *col = ad * *col;
+        }
+        Ok(())
+    }
+
+    /// The PPOE, unchecked: tip pose and covariance for joint values `thetas` (clipped to
+    /// the limits first) and per-joint covariances `covs` of the model
+    /// `T = D₁·Exp(ξ₁)·D₂·Exp(ξ₂)·…·Dₙ·Exp(ξₙ)·M`, `Dᵢ = Exp(Sᵢθᵢ)`, ξᵢ ~ N(0, covsᵢ)
+    /// (rotation first, base-frame screw coordinates).
+    ///
+    /// Method: Meyer, Strobl & Triebel, *The Probabilistic Robot Kinematics Model*, IROS
+    /// 2022: `C ← Ad(Dᵢ⁻¹)·C·Ad(Dᵢ⁻¹)ᵀ + covsᵢ` per joint (second order), then the last
+    /// step chosen by `convention`. Non-finite or non-PSD inputs give meaningless
+    /// (possibly NaN) output but never panic; see [`ChainRef::ppoe_checked`].
+    pub fn ppoe(
+        &self,
+        thetas: &[T],
+        covs: &[Mat6<T>],
+        convention: Convention,
+    ) -> Result<UncertainPose<T>, Error> {
+        if thetas.len() != self.joints.len() || covs.len() != self.joints.len() {
+            return Err(Error::LengthMismatch);
+        }
+        let clip_continuous = convention == Convention::Pytransform3d;
+        let mut p = Transform::identity();
+        let mut c = Mat6::zeros();
+        for ((j, theta), cov) in self.joints.iter().zip(thetas).zip(covs) {
+            let d = j.displacement(j.clip(*theta, clip_continuous));
+            p = p * d;
+            c = c.congruence(&d.inverse().adjoint()) + *cov;
+        }
+        let pose = p * self.home;
+        let last = match convention {
+            Convention::Right => self.home.inverse().adjoint(),
+            Convention::Left => p.adjoint(),
+            Convention::Pytransform3d => self.home.adjoint(),
+        };
+        Ok(UncertainPose {
+            pose,
+            cov: c.congruence(&last),
+        })
+    }
+
+    /// The PPOE with input checks: every θ finite, every covariance finite, symmetric and
+    /// positive semi-definite within tolerance ([`check_covariance`]); then
+    /// [`ChainRef::ppoe`].
+    pub fn ppoe_checked(
+        &self,
+        thetas: &[T],
+        covs: &[Mat6<T>],
+        convention: Convention,
+    ) -> Result<UncertainPose<T>, Error> {
+        if !thetas.iter().all(|t| t.is_finite()) {
+            return Err(Error::NonFinite);
+        }
+        for c in covs {
+            check_covariance(c)?;
+        }
+        self.ppoe(thetas, covs, convention)
+    }
+
+    /// Higher-order PPOE: the Barfoot & Furgale fourth-order compounding
+    /// ([`concat_globally`] with [`Order::Fourth`]) applied once per joint in the global
+    /// form, factor i = `(Dᵢ, Ad(Dᵢ)·covsᵢ·Ad(Dᵢ)ᵀ)`, then converted to `convention`
+    /// (Right or Left; Pytransform3d is treated as Right). Closer to Monte Carlo at large
+    /// noise (MATH.md §8); about 4× the cost of [`ChainRef::ppoe`]. Unchecked.
+    pub fn ppoe_fourth_order(
+        &self,
+        thetas: &[T],
+        covs: &[Mat6<T>],
+        convention: Convention,
+    ) -> Result<UncertainPose<T>, Error> {
+        if thetas.len() != self.joints.len() || covs.len() != self.joints.len() {
+            return Err(Error::LengthMismatch);
+        }
+        let mut p = Transform::identity();
+        let mut c = Mat6::zeros();
+        for ((j, theta), cov) in self.joints.iter().zip(thetas).zip(covs) {
+            let d = j.displacement(j.clip(*theta, false));
+            let global = cov.congruence(&d.adjoint());
+            (p, c) = concat_globally(&d, &global, &p, &c, Order::Fourth);
+        }
+        let pose = p * self.home;
+        let cov = match convention {
+            Convention::Left => c,
+            _ => c.congruence(&pose.inverse().adjoint()),
+        };
+        Ok(UncertainPose { pose, cov })
+    }
+}
+
+impl<T: Real, const N: usize> Chain<T, N> {
+    /// The slice view of this chain (same algorithms).
+    #[inline]
+    pub fn as_ref(&self) -> ChainRef<'_, T> {
+        ChainRef {
+            joints: &self.joints,
+            home: self.home,
+        }
+    }
+
+    /// Joint values clipped to the limits (`np.clip` semantics; continuous joints are not
+    /// clipped).
+    pub fn clip(&self, thetas: &[T; N]) -> [T; N] {
+        let mut out = *thetas;
+        for (o, j) in out.iter_mut().zip(&self.joints) {
+            *o = j.clip(*o, false);
+        }
+        out
+    }
+
+    /// Rigid forward kinematics `Exp(S₁θ₁)·…·Exp(Sₙθₙ)·M` (tip to base) at the clipped θ.
+    pub fn forward_kinematics(&self, thetas: &[T; N]) -> Transform<T> {
+        self.as_ref()
+            .forward_kinematics(thetas)
+            .unwrap_or_else(|_| Transform::identity())
+    }
+
+    /// Space Jacobian at the clipped θ: 6×N, column i = `Ad(D₁…Dᵢ₋₁)·Sᵢ` (base frame,
+    /// rotation first).
+    pub fn space_jacobian(&self, thetas: &[T; N]) -> Matrix<T, 6, N> {
+        let mut cols = [Vec6::zeros(); N];
+        let _ = self.as_ref().space_jacobian(thetas, &mut cols);
+        columns_to_matrix(&cols)
+    }
+
+    /// Body Jacobian at the clipped θ: 6×N, column i = `Ad(T⁻¹)·Jₛ,ᵢ` (tip frame,
+    /// rotation first).
+    pub fn body_jacobian(&self, thetas: &[T; N]) -> Matrix<T, 6, N> {
+        let mut cols = [Vec6::zeros(); N];
+        let _ = self.as_ref().body_jacobian(thetas, &mut cols);
+        columns_to_matrix(&cols)
+    }
+
+    /// The PPOE (unchecked): pose and covariance in the given convention. See
+    /// [`ChainRef::ppoe`] for the model and method.
+    ///
+    /// ```
+    /// use ppoe::chain::{Chain, Convention, Joint, JointKind};
+    /// use ppoe::{Mat6, Transform};
+    /// const INF: f64 = f64::INFINITY;
+    /// // A planar 2-link arm: joints about z at x = 0 and x = 0.5, tip at x = 1.
+    /// const ARM: Chain<f64, 2> = Chain::new("base", "tip", [
+    ///     Joint::new("j1", JointKind::Revolute, [0., 0., 1., 0., 0., 0.], -INF, INF),
+    ///     Joint::new("j2", JointKind::Revolute, [0., 0., 1., 0., -0.5, 0.], -INF, INF),
+    /// ], Transform::from_parts([[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]], [1., 0., 0.]));
+    /// let covs = [ppoe::chain::screw_noise(&ARM.joints[0].screw, 1e-4),
+    ///             ppoe::chain::screw_noise(&ARM.joints[1].screw, 1e-4)];
+    /// let tip = ARM.ppoe(&[0.3, -0.2], &covs, Convention::Right);
+    /// assert!(tip.cov.0[2][2] > 1e-4); // yaw variance of the tip: both joints add up
+    /// ```
+    pub fn ppoe(&self, thetas: &[T; N], covs: &[Mat6<T>; N], convention: Convention) -> UncertainPose<T> {
+        self.as_ref()
+            .ppoe(thetas, covs, convention)
+            .unwrap_or(UncertainPose {
+                pose: Transform::identity(),
+                cov: Mat6::zeros(),
+            })
+    }
+
+    /// The PPOE with input checks (see [`ChainRef::ppoe_checked`]).
+    pub fn ppoe_checked(
+        &self,
+        thetas: &[T; N],
+        covs: &[Mat6<T>; N],
+        convention: Convention,
+    ) -> Result<UncertainPose<T>, Error> {
+        self.as_ref().ppoe_checked(thetas, covs, convention)
+    }
+
+    /// The fourth-order PPOE (see [`ChainRef::ppoe_fourth_order`]).
+    pub fn ppoe_fourth_order(
+        &self,
+        thetas: &[T; N],
+        covs: &[Mat6<T>; N],
+        convention: Convention,
+    ) -> UncertainPose<T> {
+        self.as_ref()
+            .ppoe_fourth_order(thetas, covs, convention)
+            .unwrap_or(UncertainPose {
+                pose: Transform::identity(),
+                cov: Mat6::zeros(),
+            })
+    }
+}
+
+/// Joint-value noise as a joint covariance: `σ²·S·Sᵀ` for screw axis S (base frame,
+/// rotation first). Exact for the model: `Exp(S(θ+δ)) = Exp(Sθ)·Exp(Sδ)`, so δ ~ N(0, σ²)
+/// is the right perturbation ξ = S·δ of the joint's displacement.
+#[inline]
+pub fn screw_noise<T: Real>(screw: &Vec6<T>, sigma2: T) -> Mat6<T> {
+    screw.outer(screw).scale(sigma2)
+}
+
+/// Link bending as a joint covariance: a small rotation ω ~ N(0, `cov_omega`) (base-frame
+/// axes) about the point `pivot` (base frame), i.e. ξ = (ω, pivot × ω) and
+/// `Σ = G·cov_omega·Gᵀ`, `G = [I; [pivot]×]`. The seed example's covariances are this
+/// with `pivot = 0` and `cov_omega = 0.05·e eᵀ` for a base axis e.
+#[inline]
+pub fn bending_noise<T: Real>(pivot: &Vec3<T>, cov_omega: &Mat3<T>) -> Mat6<T> {
+    let c = *cov_omega;
+    let p = so3::hat(pivot);
+    let pc = p * c;
+    Mat6::from_blocks(&c, &pc.transpose(), &pc, &c.congruence(&p))
+}
+
+/// Stacks N 6-vectors as the columns of a 6×N matrix.
+fn columns_to_matrix<T: Real, const N: usize>(cols: &[Vec6<T>; N]) -> Matrix<T, 6, N> {
+    let mut m = Matrix::zeros();
+    for (j, c) in cols.iter().enumerate() {
+        for (row, x) in m.0.iter_mut().zip(c.0.iter()) {
+            if let Some(slot) = row.get_mut(j) {
+                *slot = *x;
+            }
+        }
+    }
+    m
 }

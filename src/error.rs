@@ -27,6 +27,8 @@ pub enum Error {
     TooFewSamples,
     /// An output buffer is too small for the requested result.
     BufferTooSmall,
+    /// Inputs of mismatched lengths (e.g. joint values and joint covariances).
+    LengthMismatch,
 }
 
 impl fmt::Display for Error {
@@ -41,6 +43,7 @@ impl fmt::Display for Error {
             Error::Empty => "no input elements",
             Error::TooFewSamples => "too few samples",
             Error::BufferTooSmall => "output buffer too small",
+            Error::LengthMismatch => "inputs have mismatched lengths",
         })
     }
 }

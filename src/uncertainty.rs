@@ -1,1 +1,422 @@
-//! placeholder
+//! Uncertain transforms: a mean [`Transform`] with a 6×6 covariance of its exponential
+//! coordinates (rotation first). The port of pytransform3d's `uncertainty` module.
+//!
+//! Two perturbation conventions appear, and every function says which it uses:
+//! * **left / global**: `T = Exp(ξ)·T̄`, ξ ~ N(0, Σ) expressed in the *output* frame of
+//!   `T̄ = A2B` (frame B). pytransform3d's default.
+//! * **right / local**: `T = T̄·Exp(ξ)`, ξ expressed in the *input* frame A.
+//!
+//! They are related by `Σ_left = Ad(T̄)·Σ_right·Ad(T̄)ᵀ` ([`right_to_left`]).
+//! Every returned covariance is exactly symmetric (one triangle computed and mirrored,
+//! or averaged with its transpose).
+
+use crate::error::Error;
+use crate::linalg::{Mat3, Mat6, Matrix, Vec3, Vec6, Vector};
+use crate::scalar::Real;
+use crate::se3::{self, Transform};
+use crate::so3;
+
+/// The order of the covariance compounding in [`concat_globally`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Order {
+    /// Second order: `Σ = Σ₂ + Ad(T₂)·Σ₁·Ad(T₂)ᵀ`.
+    Second,
+    /// Fourth order: second order plus the Barfoot & Furgale (2014) fourth-order terms;
+    /// this is what pytransform3d computes.
+    #[default]
+    Fourth,
+}
+
+/// Converts a right (local) covariance of `mean` into the left (global) one:
+/// `Ad(T̄)·Σ·Ad(T̄)ᵀ`.
+#[inline]
+pub fn right_to_left<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Mat6<T> {
+    cov.congruence(&mean.adjoint())
+}
+
+/// Converts a left (global) covariance of `mean` into the right (local) one:
+/// `Ad(T̄⁻¹)·Σ·Ad(T̄⁻¹)ᵀ`.
+#[inline]
+pub fn left_to_right<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Mat6<T> {
+    cov.congruence(&mean.inverse().adjoint())
+}
+
+/// Concatenates two uncertain transforms with **left (global)** perturbations:
+/// `Exp(ξ')·T_AC = Exp(ξ_C)·T_BC·Exp(ξ_B)·T_AB`; returns `(T_BC·T_AB, Σ_AC)` with
+/// `Σ_AC` in frame C.
+///
+/// Corresponds to pytransform3d's `concat_globally_uncertain_transforms(mean_A2B,
+/// cov_A2B, mean_B2C, cov_B2C)` (same argument order). With [`Order::Fourth`] it adds the
+/// fourth-order terms of Barfoot & Furgale, *Associating Uncertainty With
+/// Three-Dimensional Poses for Use in Estimation Problems*, IEEE T-RO 2014, eq. 55–57,
+/// exactly as pytransform3d does (MATH.md §3.1). Cost: two 6×6 congruences (second order),
+/// about 30 3×3 products more (fourth).
+pub fn concat_globally<T: Real>(
+    mean_a2b: &Transform<T>,
+    cov_a2b: &Mat6<T>,
+    mean_b2c: &Transform<T>,
+    cov_b2c: &Mat6<T>,
+    order: Order,
+) -> (Transform<T>, Mat6<T>) {
+    let moved = cov_a2b.congruence(&mean_b2c.adjoint());
+    let mut cov = *cov_b2c + moved;
+    if order == Order::Fourth {
+        cov += fourth_order_terms(cov_b2c, &moved);
+    }
+    (*mean_b2c * *mean_a2b, cov.symmetrize())
+}
+
+/// `⟨⟨M⟩⟩ = −tr(M)·I + M` (Barfoot & Furgale 2014, eq. 39).
+#[inline]
+fn dbl<T: Real>(m: &Mat3<T>) -> Mat3<T> {
+    *m - Mat3::identity() * m.trace()
+}
+
+/// `⟨⟨M, N⟩⟩ = ⟨⟨M⟩⟩⟨⟨N⟩⟩ + ⟨⟨N·M⟩⟩`.
+#[inline]
+fn dbl2<T: Real>(m: &Mat3<T>, n: &Mat3<T>) -> Mat3<T> {
+    dbl(m) * dbl(n) + dbl(&(*n * *m))
+}
+
+/// Swaps rotation-first and translation-first block order: `[[A, B], [C, D]] ↦
+/// [[D, C], [B, A]]` (its own inverse).
+#[inline]
+fn swap_order<T: Real>(m: &Mat6<T>) -> Mat6<T> {
+    Mat6::from_blocks(&m.block(1, 1), &m.block(1, 0), &m.block(0, 1), &m.block(0, 0))
+}
+
+/// The fourth-order compounding terms F(Σ₁, Σ₂) of Barfoot & Furgale (2014), where Σ₁ is
+/// the second transform's covariance and Σ₂ the first one moved into the output frame
+/// (MATH.md §3.1). Computed in translation-first order, as in the paper.
+pub(crate) fn fourth_order_terms<T: Real>(s1: &Mat6<T>, s2: &Mat6<T>) -> Mat6<T> {
+    let a = swap_order(s1);
+    let b = swap_order(s2);
+    let (a11, a12, a22) = (a.block(0, 0), a.block(0, 1), a.block(1, 1));
+    let (b11, b12, b22) = (b.block(0, 0), b.block(0, 1), b.block(1, 1));
+    let zero = Mat3::zeros();
+    let big_a1 = Mat6::from_blocks(&dbl(&a22), &dbl(&(a12 + a12.transpose())), &zero, &dbl(&a22));
+    let big_a2 = Mat6::from_blocks(&dbl(&b22), &dbl(&(b12 + b12.transpose())), &zero, &dbl(&b22));
+    let b11_ = dbl2(&a22, &b11)
+        + dbl2(&a12.transpose(), &b12)
+        + dbl2(&a12, &b12.transpose())
+        + dbl2(&a11, &b22);
+    let b12_ = dbl2(&a22, &b12.transpose()) + dbl2(&a12.transpose(), &b22);
+    let b22_ = dbl2(&a22, &b22);
+    let big_b = Mat6::from_blocks(&b11_, &b12_, &b12_.transpose(), &b22_);
+    let a1b = big_a1 * b;
+    let a2a = big_a2 * a;
+    let sum = a1b + a1b.transpose() + a2a + a2a.transpose();
+    swap_order(&(sum * T::lit(1.0 / 12.0) + big_b * T::lit(0.25)))
+}
+
+/// Concatenates two uncertain transforms with **right (local)** perturbations:
+/// `T_AC·Exp(ξ'_A) = T_BC·Exp(ξ_B)·T_AB·Exp(ξ_A)`; returns `(T_BC·T_AB, Σ'_A)` with
+/// `Σ'_A = Ad(T_AB⁻¹)·Σ_B·Ad(T_AB⁻¹)ᵀ + Σ_A` in frame A (second order).
+///
+/// Corresponds to pytransform3d's `concat_locally_uncertain_transforms(mean_A2B,
+/// mean_B2C, cov_A, cov_B)` (same argument order; note it differs from
+/// [`concat_globally`]). This is the building block of the PPOE (Meyer et al. 2022).
+pub fn concat_locally<T: Real>(
+    mean_a2b: &Transform<T>,
+    mean_b2c: &Transform<T>,
+    cov_a: &Mat6<T>,
+    cov_b: &Mat6<T>,
+) -> (Transform<T>, Mat6<T>) {
+    let g = mean_a2b.inverse().adjoint();
+    (*mean_b2c * *mean_a2b, cov_b.congruence(&g) + *cov_a)
+}
+
+/// Inverts an uncertain transform with **left (global)** perturbation: returns
+/// `(T̄⁻¹, Ad(T̄⁻¹)·Σ·Ad(T̄⁻¹)ᵀ)`, the covariance of the left perturbation of the inverse.
+///
+/// Corresponds to pytransform3d's `invert_uncertain_transform`.
+pub fn invert<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> (Transform<T>, Mat6<T>) {
+    let inv = mean.inverse();
+    (inv, cov.congruence(&inv.adjoint()))
+}
+
+/// Options of the iterative estimators ([`pose_fusion`], [`frechet_mean`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IterationOptions<T> {
+    /// Maximum number of iterations.
+    pub max_iterations: usize,
+    /// The iteration stops once the update step's norm is at most this.
+    pub step_tolerance: T,
+    /// The result is reported as converged if the last step's norm is at most this.
+    pub converged_tolerance: T,
+}
+
+impl<T: Real> Default for IterationOptions<T> {
+    /// 20 iterations at most (pytransform3d's fixed count), stop at a step of 64·ε,
+    /// converged below √ε.
+    fn default() -> Self {
+        Self {
+            max_iterations: 20,
+            step_tolerance: T::EPS * T::lit(64.0),
+            converged_tolerance: T::TOL,
+        }
+    }
+}
+
+/// The result of [`pose_fusion`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fusion<T> {
+    /// The fused pose.
+    pub mean: Transform<T>,
+    /// Its covariance (left / global perturbation), the inverse of the information
+    /// matrix at `mean`.
+    pub cov: Mat6<T>,
+    /// The residual cost `V = ½ Σₖ xₖᵀ Σₖ⁻¹ xₖ`, `xₖ = Log(T̄·Tₖ⁻¹)`, at `mean`.
+    pub cost: T,
+    /// Iterations performed.
+    pub iterations: usize,
+    /// Whether the last Gauss-Newton step was below the convergence tolerance.
+    pub converged: bool,
+}
+
+/// Information matrix, gradient and cost of the fusion problem at `mean`.
+fn fusion_terms<T: Real>(
+    mean: &Transform<T>,
+    means: &[Transform<T>],
+    infos: &[Mat6<T>],
+) -> (Mat6<T>, Vec6<T>, T) {
+    let mut lhs = Mat6::zeros();
+    let mut rhs = Vec6::zeros();
+    let mut cost = T::ZERO;
+    for (tk, wk) in means.iter().zip(infos.iter()) {
+        let x = se3::log(&(*mean * tk.inverse()));
+        let ji = se3::left_jacobian_inv(&x);
+        let wx = *wk * x;
+        lhs += wk.congruence(&ji.transpose());
+        rhs += ji.tr_mul_vec(&wx);
+        cost += T::HALF * x.dot(&wx);
+    }
+    (lhs, rhs, cost)
+}
+
+/// Fuses K uncertain poses of the same frame (left / global perturbations) by
+/// Gauss-Newton on `V(T) = ½ Σₖ Log(T·Tₖ⁻¹)ᵀ Σₖ⁻¹ Log(T·Tₖ⁻¹)`, starting at the identity,
+/// with updates `T ← Exp(δ)·T` (Barfoot & Furgale 2014, §IV.B).
+///
+/// Corresponds to pytransform3d's `pose_fusion(means, covs)`, which always runs 20
+/// iterations; here the loop stops when the step is below
+/// [`IterationOptions::step_tolerance`] and reports convergence. The covariance is the
+/// inverse information matrix at the returned mean (pytransform3d evaluates it one
+/// update earlier; at convergence they agree).
+///
+/// Errors: [`Error::Empty`] for no poses or `means.len() != covs.len()`,
+/// [`Error::NonFinite`], [`Error::Singular`] if a covariance or the information matrix
+/// is not positive definite. Holds at most 16 poses (their information matrices live on
+/// the stack); more give [`Error::BufferTooSmall`].
+pub fn pose_fusion<T: Real>(
+    means: &[Transform<T>],
+    covs: &[Mat6<T>],
+    options: &IterationOptions<T>,
+) -> Result<Fusion<T>, Error> {
+    const MAX_POSES: usize = 16;
+    if means.is_empty() || means.len() != covs.len() {
+        return Err(Error::Empty);
+    }
+    if means.len() > MAX_POSES {
+        return Err(Error::BufferTooSmall);
+    }
+    let mut infos = heapless::Vec::<Mat6<T>, MAX_POSES>::new();
+    for (m, c) in means.iter().zip(covs.iter()) {
+        if !c.is_finite() || !m.rotation.is_finite() || !m.translation.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        let w = c.inverse_spd().ok_or(Error::Singular)?;
+        infos.push(w).map_err(|_| Error::BufferTooSmall)?;
+    }
+    let mut mean = Transform::identity();
+    let mut iterations = 0;
+    let mut converged = false;
+    while iterations < options.max_iterations {
+        let (lhs, rhs, _) = fusion_terms(&mean, means, &infos);
+        let step = -lhs.solve_spd(&rhs).ok_or(Error::Singular)?;
+        if !step.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        mean = se3::exp(&step) * mean;
+        iterations += 1;
+        let n = step.norm();
+        converged = n <= options.converged_tolerance;
+        if n <= options.step_tolerance {
+            break;
+        }
+    }
+    let (lhs, _, cost) = fusion_terms(&mean, means, &infos);
+    let cov = lhs.inverse_spd().ok_or(Error::Singular)?;
+    Ok(Fusion {
+        mean,
+        cov,
+        cost,
+        iterations,
+        converged,
+    })
+}
+
+/// A Lie group for the Fréchet mean: the right difference `Log(self⁻¹·x)` and the
+/// right update `self·Exp(d)`, in `D` tangent coordinates.
+pub trait LieGroup<T: Real, const D: usize>: Copy {
+    /// The right (body-frame) difference `Log(self⁻¹·x)`.
+    fn right_difference(&self, x: &Self) -> Vector<T, D>;
+    /// The right update `self·Exp(d)`.
+    fn right_update(&self, d: &Vector<T, D>) -> Self;
+    /// `true` if every element is finite.
+    fn is_finite(&self) -> bool;
+}
+
+impl<T: Real> LieGroup<T, 6> for Transform<T> {
+    #[inline]
+    fn right_difference(&self, x: &Self) -> Vec6<T> {
+        se3::log(&(self.inverse() * *x))
+    }
+    #[inline]
+    fn right_update(&self, d: &Vec6<T>) -> Self {
+        *self * se3::exp(d)
+    }
+    #[inline]
+    fn is_finite(&self) -> bool {
+        self.rotation.is_finite() && self.translation.is_finite()
+    }
+}
+
+impl<T: Real> LieGroup<T, 3> for Mat3<T> {
+    #[inline]
+    fn right_difference(&self, x: &Self) -> Vec3<T> {
+        so3::log(&(self.transpose() * *x))
+    }
+    #[inline]
+    fn right_update(&self, d: &Vec3<T>) -> Self {
+        *self * so3::exp(d)
+    }
+    #[inline]
+    fn is_finite(&self) -> bool {
+        Matrix::is_finite(self)
+    }
+}
+
+/// The result of [`frechet_mean`] and the Gaussian estimators.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Estimate<G, C> {
+    /// The Fréchet mean.
+    pub mean: G,
+    /// The sample covariance (divisor N − 1) of the right differences `Log(mean⁻¹·Xᵢ)`
+    /// at the returned mean (right / local perturbation).
+    pub cov: C,
+    /// Iterations performed.
+    pub iterations: usize,
+    /// Whether the last update step was below the convergence tolerance.
+    pub converged: bool,
+}
+
+/// Fréchet (Karcher) mean of samples on a Lie group by the fixed-point iteration
+/// `mean ← mean·Exp(avgᵢ Log(mean⁻¹·Xᵢ))`, starting at the first sample, plus the
+/// sample covariance of the right differences.
+///
+/// Corresponds to pytransform3d's `frechet_mean` as used by its two estimators, with one
+/// deliberate difference: pytransform3d takes right differences but applies a *left*
+/// update, which converges only for mean rotations below 60° (MATH.md §3.5). The
+/// consistent right update here has the same fixed point (so the results agree
+/// wherever pytransform3d converges) and converges at any angle.
+///
+/// Errors: [`Error::Empty`] for no samples, [`Error::TooFewSamples`] for one sample
+/// (the sample covariance needs two), [`Error::NonFinite`].
+pub fn frechet_mean<T: Real, G: LieGroup<T, D>, const D: usize>(
+    samples: &[G],
+    options: &IterationOptions<T>,
+) -> Result<Estimate<G, Matrix<T, D, D>>, Error> {
+    let first = samples.first().ok_or(Error::Empty)?;
+    if samples.len() < 2 {
+        return Err(Error::TooFewSamples);
+    }
+    if !samples.iter().all(|s| s.is_finite()) {
+        return Err(Error::NonFinite);
+    }
+    let n = T::from_usize(samples.len());
+    let average = |mean: &G| {
+        let mut sum = Vector::<T, D>::zeros();
+        for s in samples {
+            sum += mean.right_difference(s);
+        }
+        sum.scale(T::ONE / n)
+    };
+    let mut mean = *first;
+    let mut iterations = 0;
+    let mut converged = false;
+    while iterations < options.max_iterations {
+        let step = average(&mean);
+        if !step.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        mean = mean.right_update(&step);
+        iterations += 1;
+        let norm = step.norm();
+        converged = norm <= options.converged_tolerance;
+        if norm <= options.step_tolerance {
+            break;
+        }
+    }
+    let avg = average(&mean);
+    let mut cov = Matrix::<T, D, D>::zeros();
+    for s in samples {
+        let d = mean.right_difference(s) - avg;
+        cov += d.outer(&d);
+    }
+    Ok(Estimate {
+        mean,
+        cov: cov.scale(T::ONE / (n - T::ONE)).symmetrize(),
+        iterations,
+        converged,
+    })
+}
+
+/// Estimates a Gaussian on SE(3) from sample poses: Fréchet mean and the covariance of
+/// the right (local) differences. See [`frechet_mean`] (50 iterations at most).
+///
+/// Corresponds to pytransform3d's `estimate_gaussian_transform_from_samples`.
+pub fn estimate_gaussian_transform<T: Real>(
+    samples: &[Transform<T>],
+) -> Result<Estimate<Transform<T>, Mat6<T>>, Error> {
+    frechet_mean(samples, &estimator_options())
+}
+
+/// Estimates a Gaussian on SO(3) from sample rotations: Fréchet mean and the covariance
+/// of the right (local) differences. See [`frechet_mean`] (50 iterations at most).
+///
+/// Corresponds to pytransform3d's `estimate_gaussian_rotation_matrix_from_samples`.
+pub fn estimate_gaussian_rotation<T: Real>(
+    samples: &[Mat3<T>],
+) -> Result<Estimate<Mat3<T>, Mat3<T>>, Error> {
+    frechet_mean(samples, &estimator_options())
+}
+
+fn estimator_options<T: Real>() -> IterationOptions<T> {
+    IterationOptions {
+        max_iterations: 50,
+        ..IterationOptions::default()
+    }
+}
+
+/// Checks a covariance: finite, symmetric within `T::TOL`·max(1, ‖Σ‖_max) and positive
+/// semi-definite within `T::TOL`·‖Σ‖_max (no eigenvalue below −tol·‖Σ‖_max).
+///
+/// Method: symmetry element-wise; PSD by a Cholesky factorisation of
+/// `Σ + (tol·‖Σ‖_max + min_positive)·I`, which exists iff the smallest eigenvalue of Σ
+/// exceeds −tol·‖Σ‖_max − min_positive. Cost: one 6×6 Cholesky.
+pub fn check_covariance<T: Real, const N: usize>(cov: &Matrix<T, N, N>) -> Result<(), Error> {
+    if !cov.is_finite() {
+        return Err(Error::NonFinite);
+    }
+    let scale = cov.amax();
+    if cov.asymmetry() > T::TOL * scale.max(T::ONE) {
+        return Err(Error::NotSymmetric);
+    }
+    let shift = T::TOL * scale + T::min_positive_value();
+    let shifted = cov.symmetrize() + Matrix::identity() * shift;
+    match shifted.cholesky() {
+        Some(_) => Ok(()),
+        None => Err(Error::NotPositiveSemidefinite),
+    }
+}
