@@ -195,7 +195,7 @@ fn fusion_terms<T: Real>(
 }
 
 /// Fuses K uncertain poses of the same frame (left / global perturbations) by
-/// Gauss-Newton on `V(T) = ½ Σₖ Log(T·Tₖ⁻¹)ᵀ Σₖ⁻¹ Log(T·Tₖ⁻¹)`, starting at the identity,
+/// Gauss-Newton with backtracking on `V(T) = ½ Σₖ Log(T·Tₖ⁻¹)ᵀ Σₖ⁻¹ Log(T·Tₖ⁻¹)`, starting at the identity,
 /// with updates `T ← Exp(δ)·T` (Barfoot & Furgale 2014, §IV.B).
 ///
 /// Corresponds to pytransform3d's `pose_fusion(means, covs)`, which always runs 20
@@ -229,23 +229,41 @@ pub fn pose_fusion<T: Real>(
         infos.push(w).map_err(|_| Error::BufferTooSmall)?;
     }
     let mut mean = Transform::identity();
+    let (mut lhs, mut rhs, mut cost) = fusion_terms(&mean, means, &infos);
     let mut iterations = 0;
     let mut converged = false;
     while iterations < options.max_iterations {
-        let (lhs, rhs, _) = fusion_terms(&mean, means, &infos);
         let step = -lhs.solve_spd(&rhs).ok_or(Error::Singular)?;
         if !step.is_finite() {
             return Err(Error::NonFinite);
         }
-        mean = se3::exp(&step) * mean;
         iterations += 1;
-        let n = step.norm();
-        converged = n <= options.converged_tolerance;
-        if n <= options.step_tolerance {
+        let norm = step.norm();
+        converged = norm <= options.converged_tolerance;
+        // Backtracking: halve the step until the cost does not grow (plain Gauss-Newton,
+        // like pytransform3d's, oscillates when the poses are far apart). Near the minimum
+        // the full step is taken, so the fixed point is the same.
+        let mut alpha = T::ONE;
+        let mut candidate = se3::exp(&step) * mean;
+        let mut terms = fusion_terms(&candidate, means, &infos);
+        let slack = cost * T::EPS * T::lit(16.0);
+        // Steps whose predicted decrease ½·gᵀH⁻¹g is below √ε of the cost are in the
+        // rounding regime of the cost itself: take them whole.
+        let predicted = -T::HALF * rhs.dot(&step);
+        for _ in 0..40 {
+            if terms.2 <= cost + slack || predicted <= cost * T::TOL {
+                break;
+            }
+            alpha = alpha * T::HALF;
+            candidate = se3::exp(&step.scale(alpha)) * mean;
+            terms = fusion_terms(&candidate, means, &infos);
+        }
+        mean = candidate;
+        (lhs, rhs, cost) = terms;
+        if norm <= options.step_tolerance {
             break;
         }
     }
-    let (lhs, _, cost) = fusion_terms(&mean, means, &infos);
     let cov = lhs.inverse_spd().ok_or(Error::Singular)?;
     Ok(Fusion {
         mean,
