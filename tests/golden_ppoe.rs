@@ -1,0 +1,122 @@
+//! Golden tests of the PPOE on our test robots, against `test_data/reference/generate_ppoe.py`
+//! (pytransform3d 3.17.0's example, MATH.md §5): the pytransform3d-compatible variant must
+//! reproduce the example's pose and covariance; the right and left conventions must match
+//! `Ad(M⁻¹)·C·Ad(M⁻¹)ᵀ` and `Ad(T̄)·Σ_R·Ad(T̄)ᵀ` computed by the oracle script from the
+//! same C.
+//!
+//! Error measure `max|a − b| / max(1, max|b|)`: f64 ≤ 1e-12. f32 ≤ [`F32_BOUND`] for joint
+//! values up to 10 rad (f32 rounds an angle θ by θ·6·10⁻⁸, so the 1000-rad cases of
+//! continuous joints carry an input error of 6·10⁻⁵ and are excluded from the f32 check).
+
+mod common;
+use common::*;
+use ppoe::chain::{ChainRef, Convention, Joint, JointKind};
+use ppoe::{Mat6, Real, Transform, Vec6, Vector};
+use serde_json::Value;
+
+const F64_BOUND: f64 = 1e-12;
+/// Six joints, each an exp (≈ 20 roundings) and a 6×6 congruence (≈ 12 roundings per
+/// element) on values of order 1: typically 1e-6 (worst seen 1.7e-6), bound 1e-5.
+const F32_BOUND: f64 = 1e-5;
+
+const FILES: [&str; 8] = [
+    "seed_linkmount_tcp",
+    "prismatic_base_link_tool0",
+    "fixed_between_world_tool_tip",
+    "continuous_base_ee",
+    "rpy_everywhere_base_tool",
+    "rpy_everywhere_link2_tool",
+    "tree_base_footprint_left_tip",
+    "tree_base_footprint_right_tip",
+];
+
+/// The chain as the oracle computed it (screw axes, home pose, limits, kinds).
+pub fn chain_from_golden<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
+    let names = g["joints"].as_array().unwrap();
+    let kinds = g["joint_types"].as_array().unwrap();
+    let joints = names
+        .iter()
+        .zip(kinds)
+        .zip(g["screw_axes"].as_array().unwrap())
+        .zip(g["limits"].as_array().unwrap())
+        .map(|(((n, k), s), lim)| {
+            let kind = match k.as_str().unwrap() {
+                "revolute" => JointKind::Revolute,
+                "continuous" => JointKind::Continuous,
+                "prismatic" => JointKind::Prismatic,
+                other => panic!("joint type {other}"),
+            };
+            let name: &'static str = Box::leak(n.as_str().unwrap().to_string().into_boxed_str());
+            let lim = vec_n::<2>(lim);
+            Joint::new(name, kind, vec_n::<6>(s).map(T::lit), T::lit(lim[0]), T::lit(lim[1]))
+        })
+        .collect();
+    (joints, cast_t(&transform(&g["home"])))
+}
+
+fn run<T: Real>(bound: f64, file: &str) {
+    let g = golden(&format!("ppoe/{file}.json"));
+    let (joints, home) = chain_from_golden::<T>(&g);
+    let chain = ChainRef { joints: &joints, home };
+    let ty = core::any::type_name::<T>();
+    let mut w = [
+        Worst::new(&format!("{file} clip {ty}")),
+        Worst::new(&format!("{file} pose {ty}")),
+        Worst::new(&format!("{file} cov pytransform3d {ty}")),
+        Worst::new(&format!("{file} cov right {ty}")),
+        Worst::new(&format!("{file} cov left {ty}")),
+    ];
+    let is_f32 = Real::to_f64(T::EPS) > 1e-10;
+    for c in g["cases"].as_array().unwrap() {
+        let l = c["label"].as_str().unwrap();
+        let thetas = vecf(&c["thetas"]);
+        if is_f32 && thetas.iter().any(|t| t.abs() > 10.0) {
+            continue;
+        }
+        let th: Vec<T> = thetas.iter().map(|x| T::lit(*x)).collect();
+        let covs: Vec<Mat6<T>> = c["covs"].as_array().unwrap().iter().map(|m| cast_m(&mat6(m))).collect();
+        let mut clipped = vec![T::ZERO; th.len()];
+        chain.clip(&th, &mut clipped, true).unwrap();
+        let clipped64: Vec<f64> = clipped.iter().map(|x| Real::to_f64(*x)).collect();
+        w[0].add(rel_err(&clipped64, &vecf(&c["thetas_clipped"])), l);
+        let compat = chain.ppoe(&th, &covs, Convention::Pytransform3d).unwrap();
+        w[1].add(rel_err(&flat_t(&up_t(&compat.pose)), &flat_t(&transform(&c["pose"]))), l);
+        w[2].add(rel_err(&flat(&up_m(&compat.cov)), &flat(&mat6(&c["cov_pytransform3d"]))), l);
+        // Right/left from the clipped values (continuous joints with stated limits are not
+        // clipped by the default conventions; the oracle always clips).
+        let right = chain.ppoe_checked(&clipped, &covs, Convention::Right);
+        let right = right.unwrap_or_else(|e| panic!("{l}: {e}"));
+        w[3].add(rel_err(&flat(&up_m(&right.cov)), &flat(&mat6(&c["cov_right"]))), l);
+        let left = chain.ppoe(&clipped, &covs, Convention::Left).unwrap();
+        w[4].add(rel_err(&flat(&up_m(&left.cov)), &flat(&mat6(&c["cov_left"]))), l);
+    }
+    for x in &w {
+        x.check(bound);
+    }
+}
+
+#[test]
+fn ppoe_f64_all_robots() {
+    for f in FILES {
+        run::<f64>(F64_BOUND, f);
+    }
+}
+
+#[test]
+fn ppoe_f32_all_robots() {
+    for f in FILES {
+        run::<f32>(F32_BOUND, f);
+    }
+}
+
+/// The seed example's initial state and all 200 animation frames are in the golden file.
+#[test]
+fn seed_frames_present() {
+    let g = golden("ppoe/seed_linkmount_tcp.json");
+    let labels: Vec<&str> = g["cases"].as_array().unwrap().iter().map(|c| c["label"].as_str().unwrap()).collect();
+    assert!(labels.contains(&"seed_initial"));
+    for k in 0..200 {
+        assert!(labels.contains(&format!("frame_{k}").as_str()), "frame_{k} missing");
+    }
+    let _ = Vec6::<f64>::zeros() + Vector([0.0; 6]);
+}
