@@ -1,0 +1,164 @@
+//! Monte Carlo checks of the *true* distribution: sample each perturbation model with a
+//! fixed seed and compare the analytic covariance with the sampled second moment of the
+//! perturbation (relative Frobenius error). With N = 10⁵ samples the sampling error of a
+//! covariance is ≈ √(2/N) ≈ 0.45 % (one standard error).
+
+mod common;
+use common::*;
+use ppoe::chain::{ChainRef, Convention};
+use ppoe::uncertainty::{self, Order};
+use ppoe::{se3, Mat6, Matrix, Transform, Vec6, Vector};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+const N: usize = 100_000;
+
+fn diag(d: [f64; 6]) -> Mat6<f64> {
+    Mat6::from_diagonal(&Vector(d))
+}
+
+/// Barfoot & Furgale (2014) two-pose compounding: ξ₁ = (π/6,0,0 | 0,2,0),
+/// ξ₂ = (0,π/4,0 | 0,0,1), Σ = α·diag(½,1,½ | 10,5,5) for both.
+fn bf_errors(alpha: f64, seed: u64) -> (f64, f64) {
+    let t1 = se3::exp(&Vector([std::f64::consts::FRAC_PI_6, 0.0, 0.0, 0.0, 2.0, 0.0]));
+    let t2 = se3::exp(&Vector([0.0, std::f64::consts::FRAC_PI_4, 0.0, 0.0, 0.0, 1.0]));
+    let s = diag([0.5, 1.0, 0.5, 10.0, 5.0, 5.0]) * alpha;
+    let g = Gaussian6::new(&s);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mean = t2 * t1;
+    let inv = mean.inverse();
+    // Global model: Exp(ξ')·T̄ = Exp(ξ₂)·T₂·Exp(ξ₁)·T₁.
+    let samples: Vec<Vec6<f64>> = (0..N)
+        .map(|_| {
+            let x1 = g.sample(&mut rng);
+            let x2 = g.sample(&mut rng);
+            se3::log(&(se3::exp(&x2) * t2 * se3::exp(&x1) * t1 * inv))
+        })
+        .collect();
+    let mc = second_moment(&samples);
+    let (_, c2) = uncertainty::concat_globally(&t1, &s, &t2, &s, Order::Second);
+    let (_, c4) = uncertainty::concat_globally(&t1, &s, &t2, &s, Order::Fourth);
+    (frob_rel(&c2, &mc), frob_rel(&c4, &mc))
+}
+
+#[test]
+fn concat_globally_matches_sampling_and_fourth_order_helps() {
+    let (e2, e4) = bf_errors(0.001, 1);
+    println!("alpha 0.001: 2nd {e2:.4}, 4th {e4:.4}");
+    assert!(e2 < 0.015 && e4 < 0.015, "small noise: {e2} {e4}");
+    let (e2, e4) = bf_errors(1.0, 2);
+    println!("alpha 1: 2nd {e2:.4}, 4th {e4:.4}");
+    assert!(e4 < e2, "4th order must be closer than 2nd at large noise");
+    assert!(e2 > 0.1 && e4 < 0.04, "large noise: 2nd {e2}, 4th {e4}");
+}
+
+#[test]
+fn concat_locally_matches_sampling() {
+    let a2b = se3::exp(&Vector([0.3, -0.2, 0.5, 0.4, 0.1, -0.3]));
+    let b2c = se3::exp(&Vector([-0.6, 0.1, 0.2, 0.0, 0.7, 0.2]));
+    let ca = diag([1e-3, 2e-3, 5e-4, 1e-3, 3e-3, 2e-3]);
+    let cb = diag([2e-3, 5e-4, 1e-3, 4e-3, 1e-3, 1e-3]);
+    let (mean, cov) = uncertainty::concat_locally(&a2b, &b2c, &ca, &cb);
+    let (ga, gb) = (Gaussian6::new(&ca), Gaussian6::new(&cb));
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let inv = mean.inverse();
+    // Local model: T̄·Exp(ξ') = T_BC·Exp(ξ_B)·T_AB·Exp(ξ_A).
+    let samples: Vec<Vec6<f64>> = (0..N)
+        .map(|_| {
+            let xa = ga.sample(&mut rng);
+            let xb = gb.sample(&mut rng);
+            se3::log(&(inv * b2c * se3::exp(&xb) * a2b * se3::exp(&xa)))
+        })
+        .collect();
+    let e = frob_rel(&cov, &second_moment(&samples));
+    println!("concat_locally: {e:.4}");
+    assert!(e < 0.015, "{e}");
+}
+
+/// Samples the PPOE model T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M and returns the right perturbations
+/// η = Log(T̄⁻¹·T).
+fn sample_chain(chain: &ChainRef<f64>, thetas: &[f64], covs: &[Mat6<f64>], seed: u64) -> Vec<Vec6<f64>> {
+    let gs: Vec<Gaussian6> = covs.iter().map(Gaussian6::new).collect();
+    let ds: Vec<Transform<f64>> = chain.joints.iter().zip(thetas).map(|(j, t)| j.displacement(j.clip(*t, false))).collect();
+    let mean_inv = chain.forward_kinematics(thetas).unwrap().inverse();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    (0..N)
+        .map(|_| {
+            let mut t = Transform::identity();
+            for (d, g) in ds.iter().zip(&gs) {
+                t = t * *d * se3::exp(&g.sample(&mut rng));
+            }
+            se3::log(&(mean_inv * t * chain.home))
+        })
+        .collect()
+}
+
+fn seed_chain() -> (Vec<ppoe::chain::Joint<f64>>, Transform<f64>) {
+    let g = golden("ppoe/seed_linkmount_tcp.json");
+    let joints = g["joints"].as_array().unwrap();
+    let j = joints
+        .iter()
+        .zip(g["screw_axes"].as_array().unwrap())
+        .zip(g["limits"].as_array().unwrap())
+        .map(|((n, s), l)| {
+            let name: &'static str = Box::leak(n.as_str().unwrap().to_string().into_boxed_str());
+            let l = vec_n::<2>(l);
+            ppoe::chain::Joint::new(name, ppoe::chain::JointKind::Revolute, vec_n::<6>(s), l[0], l[1])
+        })
+        .collect();
+    (j, transform(&g["home"]))
+}
+
+/// The seed's joint covariances (MATH.md §5.3) scaled by `scale`.
+fn seed_covs(scale: f64) -> Vec<Mat6<f64>> {
+    let z = diag([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
+    let y = diag([0.0, 1.0, 0.0, 0.0, 0.0, 0.0]);
+    [z, y, y, Matrix::zeros(), y, Matrix::zeros()].iter().map(|c| *c * (0.05 * scale)).collect()
+}
+
+/// Seed-animation joint values at frame k.
+fn frame(k: usize) -> Vec<f64> {
+    let angle = 0.5 * (2.0 * std::f64::consts::PI * (0.5 + k as f64 / 200.0)).cos();
+    [1.0, 1.0, 1.0, 0.0, 1.0, 0.0].iter().map(|t| angle * t).collect()
+}
+
+#[test]
+fn ppoe_right_convention_matches_sampling_on_seed_robot() {
+    let (joints, home) = seed_chain();
+    let chain = ChainRef { joints: &joints, home };
+    for (k, seed) in [(0usize, 10u64), (100, 11)] {
+        let th = frame(k);
+        for (scale, bound) in [(1.0 / 16.0, 0.015), (1.0, 0.06)] {
+            let covs = seed_covs(scale);
+            let mc = second_moment(&sample_chain(&chain, &th, &covs, seed));
+            let right = chain.ppoe(&th, &covs, Convention::Right).unwrap();
+            let compat = chain.ppoe(&th, &covs, Convention::Pytransform3d).unwrap();
+            let (e, ec) = (frob_rel(&right.cov, &mc), frob_rel(&compat.cov, &mc));
+            println!("frame {k}, noise x{scale}: right {e:.4}, pytransform3d-compatible {ec:.3}");
+            assert!(e < bound, "frame {k} x{scale}: {e} >= {bound}");
+            assert!(ec > 0.3, "the compatible variant should be far off: {ec}");
+            // Left convention: the same distribution seen from the base frame.
+            let left = chain.ppoe(&th, &covs, Convention::Left).unwrap();
+            let mc_left: Vec<Vec6<f64>> = sample_chain(&chain, &th, &covs, seed + 100)
+                .iter()
+                .map(|eta| right.pose.adjoint() * *eta)
+                .collect();
+            let el = frob_rel(&left.cov, &second_moment(&mc_left));
+            assert!(el < bound, "left: {el}");
+        }
+    }
+}
+
+#[test]
+fn fourth_order_ppoe_is_closer_at_large_noise() {
+    let (joints, home) = seed_chain();
+    let chain = ChainRef { joints: &joints, home };
+    let th = frame(0);
+    let covs = seed_covs(4.0);
+    let mc = second_moment(&sample_chain(&chain, &th, &covs, 21));
+    let e2 = frob_rel(&chain.ppoe(&th, &covs, Convention::Right).unwrap().cov, &mc);
+    let e4 = frob_rel(&chain.ppoe_fourth_order(&th, &covs, Convention::Right).unwrap().cov, &mc);
+    println!("seed x4 noise: 2nd order {e2:.4}, 4th order {e4:.4}");
+    assert!(e4 < e2 / 4.0, "4th order {e4} not clearly closer than 2nd {e2}");
+    assert!(e4 < 0.015, "{e4}");
+}
