@@ -47,3 +47,8 @@ pub use error::Error;
 pub use linalg::{Mat3, Mat6, Matrix, Vec3, Vec6, Vector};
 pub use scalar::Real;
 pub use se3::Transform;
+
+/// The README's code blocks, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
