@@ -41,7 +41,13 @@ pub struct Joint<T> {
 impl<T: Real> Joint<T> {
     /// A joint; usable in `const` items (this is what `ppoe-build` emits).
     #[inline]
-    pub const fn new(name: &'static str, kind: JointKind, screw: [T; 6], lower: T, upper: T) -> Self {
+    pub const fn new(
+        name: &'static str,
+        kind: JointKind,
+        screw: [T; 6],
+        lower: T,
+        upper: T,
+    ) -> Self {
         Self {
             name,
             kind,
@@ -352,7 +358,12 @@ impl<T: Real, const N: usize> Chain<T, N> {
     /// let tip = ARM.ppoe(&[0.3, -0.2], &covs, Convention::Right);
     /// assert!(tip.cov.0[2][2] > 1e-4); // yaw variance of the tip: both joints add up
     /// ```
-    pub fn ppoe(&self, thetas: &[T; N], covs: &[Mat6<T>; N], convention: Convention) -> UncertainPose<T> {
+    pub fn ppoe(
+        &self,
+        thetas: &[T; N],
+        covs: &[Mat6<T>; N],
+        convention: Convention,
+    ) -> UncertainPose<T> {
         self.as_ref()
             .ppoe(thetas, covs, convention)
             .unwrap_or(UncertainPose {

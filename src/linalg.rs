@@ -65,7 +65,7 @@ impl<T: Real, const N: usize> Vector<T, N> {
     pub fn dot(&self, other: &Self) -> T {
         let mut s = T::ZERO;
         for (x, y) in self.0.iter().zip(other.0.iter()) {
-            s = s + *x * *y;
+            s += *x * *y;
         }
         s
     }
@@ -261,7 +261,7 @@ impl<T: Real, const R: usize, const C: usize> Matrix<T, R, C> {
         let mut out = Vector::<T, C>::zeros();
         for (row, s) in self.0.iter().zip(v.0.iter()) {
             for (o, x) in out.0.iter_mut().zip(row.iter()) {
-                *o = *o + *x * *s;
+                *o += *x * *s;
             }
         }
         out
@@ -274,7 +274,7 @@ impl<T: Real, const R: usize, const C: usize> Matrix<T, R, C> {
         for (orow, arow) in out.0.iter_mut().zip(self.0.iter()) {
             for (a, brow) in arow.iter().zip(rhs.0.iter()) {
                 for (o, b) in orow.iter_mut().zip(brow.iter()) {
-                    *o = *o + *a * *b;
+                    *o += *a * *b;
                 }
             }
         }
@@ -385,10 +385,10 @@ impl<T: Real, const N: usize> Matrix<T, N, N> {
             for j in 0..=i {
                 let mut s = self.0[i][j];
                 for k in 0..j {
-                    s = s - l.0[i][k] * l.0[j][k];
+                    s -= l.0[i][k] * l.0[j][k];
                 }
                 if i == j {
-                    if !(s > T::ZERO) || !s.is_finite() {
+                    if s.is_nan() || s <= T::ZERO || !s.is_finite() {
                         return None;
                     }
                     l.0[i][i] = s.sqrt();
@@ -430,14 +430,14 @@ fn cholesky_solve<T: Real, const N: usize>(l: &Matrix<T, N, N>, b: &Vector<T, N>
     for i in 0..N {
         let mut s = y.0[i];
         for k in 0..i {
-            s = s - l.0[i][k] * y.0[k];
+            s -= l.0[i][k] * y.0[k];
         }
         y.0[i] = s / l.0[i][i];
     }
     for i in (0..N).rev() {
         let mut s = y.0[i];
         for k in i + 1..N {
-            s = s - l.0[k][i] * y.0[k];
+            s -= l.0[k][i] * y.0[k];
         }
         y.0[i] = s / l.0[i][i];
     }

@@ -178,8 +178,11 @@ impl<T: Real> approx::RelativeEq for Transform<T> {
         T::default_max_relative()
     }
     fn relative_eq(&self, other: &Self, epsilon: T, max_relative: T) -> bool {
-        self.rotation.relative_eq(&other.rotation, epsilon, max_relative)
-            && self.translation.relative_eq(&other.translation, epsilon, max_relative)
+        self.rotation
+            .relative_eq(&other.rotation, epsilon, max_relative)
+            && self
+                .translation
+                .relative_eq(&other.translation, epsilon, max_relative)
     }
 }
 
@@ -189,7 +192,9 @@ impl<T: Real> approx::UlpsEq for Transform<T> {
     }
     fn ulps_eq(&self, other: &Self, epsilon: T, max_ulps: u32) -> bool {
         self.rotation.ulps_eq(&other.rotation, epsilon, max_ulps)
-            && self.translation.ulps_eq(&other.translation, epsilon, max_ulps)
+            && self
+                .translation
+                .ulps_eq(&other.translation, epsilon, max_ulps)
     }
 }
 
@@ -270,15 +275,18 @@ fn q_coefficients<T: Real>(ph: T) -> (T, T, T) {
         let m2 = l(1.0 / 6.0)
             - p2 * (l(1.0 / 120.0)
                 - p2 * (l(1.0 / 5040.0)
-                    - p2 * (l(1.0 / 362880.0) - p2 * (l(1.0 / 39916800.0) - p2 / l(6227020800.0)))));
+                    - p2 * (l(1.0 / 362880.0)
+                        - p2 * (l(1.0 / 39916800.0) - p2 / l(6227020800.0)))));
         let m3 = l(-1.0 / 24.0)
             + p2 * (l(1.0 / 720.0)
                 - p2 * (l(1.0 / 40320.0)
-                    - p2 * (l(1.0 / 3628800.0) - p2 * (l(1.0 / 479001600.0) - p2 / l(87178291200.0)))));
+                    - p2 * (l(1.0 / 3628800.0)
+                        - p2 * (l(1.0 / 479001600.0) - p2 / l(87178291200.0)))));
         let m4 = l(-1.0 / 120.0)
             + p2 * (l(1.0 / 2520.0)
                 - p2 * (l(1.0 / 120960.0)
-                    - p2 * (l(1.0 / 9979200.0) - p2 * (l(1.0 / 1245404160.0) - p2 / l(217945728000.0)))));
+                    - p2 * (l(1.0 / 9979200.0)
+                        - p2 * (l(1.0 / 1245404160.0) - p2 / l(217945728000.0)))));
         (m2, m3, m4)
     } else {
         let (s, c) = ph.sin_cos_r();

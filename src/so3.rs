@@ -152,7 +152,7 @@ pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
         a = -a;
     }
     let n = a.norm();
-    if !(n > T::ZERO) || !n.is_finite() {
+    if n.is_nan() || n <= T::ZERO || !n.is_finite() {
         return (x_axis, angle);
     }
     (a.scale(T::ONE / n), angle)

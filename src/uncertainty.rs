@@ -82,7 +82,12 @@ fn dbl2<T: Real>(m: &Mat3<T>, n: &Mat3<T>) -> Mat3<T> {
 /// [[D, C], [B, A]]` (its own inverse).
 #[inline]
 fn swap_order<T: Real>(m: &Mat6<T>) -> Mat6<T> {
-    Mat6::from_blocks(&m.block(1, 1), &m.block(1, 0), &m.block(0, 1), &m.block(0, 0))
+    Mat6::from_blocks(
+        &m.block(1, 1),
+        &m.block(1, 0),
+        &m.block(0, 1),
+        &m.block(0, 0),
+    )
 }
 
 /// The fourth-order compounding terms F(Σ₁, Σ₂) of Barfoot & Furgale (2014), where Σ₁ is
@@ -94,8 +99,18 @@ pub(crate) fn fourth_order_terms<T: Real>(s1: &Mat6<T>, s2: &Mat6<T>) -> Mat6<T>
     let (a11, a12, a22) = (a.block(0, 0), a.block(0, 1), a.block(1, 1));
     let (b11, b12, b22) = (b.block(0, 0), b.block(0, 1), b.block(1, 1));
     let zero = Mat3::zeros();
-    let big_a1 = Mat6::from_blocks(&dbl(&a22), &dbl(&(a12 + a12.transpose())), &zero, &dbl(&a22));
-    let big_a2 = Mat6::from_blocks(&dbl(&b22), &dbl(&(b12 + b12.transpose())), &zero, &dbl(&b22));
+    let big_a1 = Mat6::from_blocks(
+        &dbl(&a22),
+        &dbl(&(a12 + a12.transpose())),
+        &zero,
+        &dbl(&a22),
+    );
+    let big_a2 = Mat6::from_blocks(
+        &dbl(&b22),
+        &dbl(&(b12 + b12.transpose())),
+        &zero,
+        &dbl(&b22),
+    );
     let b11_ = dbl2(&a22, &b11)
         + dbl2(&a12.transpose(), &b12)
         + dbl2(&a12, &b12.transpose())
@@ -254,7 +269,7 @@ pub fn pose_fusion<T: Real>(
             if terms.2 <= cost + slack || predicted <= cost * T::TOL {
                 break;
             }
-            alpha = alpha * T::HALF;
+            alpha *= T::HALF;
             candidate = se3::exp(&step.scale(alpha)) * mean;
             terms = fusion_terms(&candidate, means, &infos);
         }

@@ -22,16 +22,18 @@ fn v6<T: Real>(a: [f64; 6]) -> Vec6<T> {
 
 /// Rotation vectors with angle in [0, π − 0.1] (away from the log's branch cut).
 fn rotvec() -> impl Strategy<Value = [f64; 3]> {
-    (prop::array::uniform3(-1.0..1.0f64), 0.0..(std::f64::consts::PI - 0.1)).prop_map(
-        |(a, angle)| {
+    (
+        prop::array::uniform3(-1.0..1.0f64),
+        0.0..(std::f64::consts::PI - 0.1),
+    )
+        .prop_map(|(a, angle)| {
             let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
             if n < 1e-3 {
                 [angle, 0.0, 0.0]
             } else {
                 a.map(|x| x / n * angle)
             }
-        },
-    )
+        })
 }
 
 fn twist() -> impl Strategy<Value = [f64; 6]> {
@@ -41,8 +43,11 @@ fn twist() -> impl Strategy<Value = [f64; 6]> {
 
 /// A random covariance L·Lᵀ of rank 1..=6 and scale up to 1.
 fn covariance() -> impl Strategy<Value = [[f64; 6]; 6]> {
-    (prop::array::uniform6(prop::array::uniform6(-0.3..0.3f64)), 1usize..=6).prop_map(
-        |(l, rank)| {
+    (
+        prop::array::uniform6(prop::array::uniform6(-0.3..0.3f64)),
+        1usize..=6,
+    )
+        .prop_map(|(l, rank)| {
             let mut c = [[0.0; 6]; 6];
             for (i, row) in c.iter_mut().enumerate() {
                 for (j, x) in row.iter_mut().enumerate() {
@@ -50,8 +55,7 @@ fn covariance() -> impl Strategy<Value = [[f64; 6]; 6]> {
                 }
             }
             c
-        },
-    )
+        })
 }
 
 fn mat6<T: Real>(a: [[f64; 6]; 6]) -> Mat6<T> {
@@ -69,17 +73,33 @@ fn exp_log_round_trips<T: Real>(w: [f64; 3], xi: [f64; 6]) {
     let r = so3::exp(&w);
     assert_relative_eq!(so3::exp(&so3::log(&r)), r, epsilon = tol::<T>());
     let xi = v6::<T>(xi);
-    assert_relative_eq!(se3::log(&se3::exp(&xi)), xi, epsilon = tol::<T>() * T::lit(4.0));
+    assert_relative_eq!(
+        se3::log(&se3::exp(&xi)),
+        xi,
+        epsilon = tol::<T>() * T::lit(4.0)
+    );
     let t = se3::exp(&xi);
-    assert_relative_eq!(se3::exp(&se3::log(&t)), t, epsilon = tol::<T>() * T::lit(4.0));
+    assert_relative_eq!(
+        se3::exp(&se3::log(&t)),
+        t,
+        epsilon = tol::<T>() * T::lit(4.0)
+    );
     assert!(so3::is_rotation(&t.rotation, tol::<T>()));
 }
 
 fn adjoint_identities<T: Real>(a: [f64; 6], b: [f64; 6], c: [f64; 6]) {
     let (t1, t2, xi) = (se3::exp(&v6::<T>(a)), se3::exp(&v6::<T>(b)), v6::<T>(c));
     let e = tol::<T>() * T::lit(8.0);
-    assert_relative_eq!((t1 * t2).adjoint(), t1.adjoint() * t2.adjoint(), epsilon = e);
-    assert_relative_eq!(t1.adjoint() * t1.inverse().adjoint(), Mat6::identity(), epsilon = e);
+    assert_relative_eq!(
+        (t1 * t2).adjoint(),
+        t1.adjoint() * t2.adjoint(),
+        epsilon = e
+    );
+    assert_relative_eq!(
+        t1.adjoint() * t1.inverse().adjoint(),
+        Mat6::identity(),
+        epsilon = e
+    );
     let lhs = t1 * se3::exp(&xi) * t1.inverse();
     let rhs = se3::exp(&(t1.adjoint() * xi));
     assert_relative_eq!(lhs, rhs, epsilon = e);
@@ -107,7 +127,12 @@ fn jacobian_inverses<T: Real>(xi: [f64; 6]) {
     assert_relative_eq!(lhs, rhs, epsilon = d * d * T::lit(50.0) + e);
 }
 
-fn covariances_symmetric_psd<T: Real>(a: [f64; 6], b: [f64; 6], c1: [[f64; 6]; 6], c2: [[f64; 6]; 6]) {
+fn covariances_symmetric_psd<T: Real>(
+    a: [f64; 6],
+    b: [f64; 6],
+    c1: [[f64; 6]; 6],
+    c2: [[f64; 6]; 6],
+) {
     let (t1, t2) = (se3::exp(&v6::<T>(a)), se3::exp(&v6::<T>(b)));
     let (s1, s2) = (mat6::<T>(c1), mat6::<T>(c2));
     for order in [Order::Second, Order::Fourth] {
@@ -124,8 +149,18 @@ fn covariances_symmetric_psd<T: Real>(a: [f64; 6], b: [f64; 6], c1: [[f64; 6]; 6
 }
 
 /// Changing the output frame with an exact transform commutes with concatenation.
-fn frame_invariance<T: Real>(a: [f64; 6], b: [f64; 6], z: [f64; 6], c1: [[f64; 6]; 6], c2: [[f64; 6]; 6]) {
-    let (a2b, b2c, c2d) = (se3::exp(&v6::<T>(a)), se3::exp(&v6::<T>(b)), se3::exp(&v6::<T>(z)));
+fn frame_invariance<T: Real>(
+    a: [f64; 6],
+    b: [f64; 6],
+    z: [f64; 6],
+    c1: [[f64; 6]; 6],
+    c2: [[f64; 6]; 6],
+) {
+    let (a2b, b2c, c2d) = (
+        se3::exp(&v6::<T>(a)),
+        se3::exp(&v6::<T>(b)),
+        se3::exp(&v6::<T>(z)),
+    );
     let (s1, s2) = (mat6::<T>(c1), mat6::<T>(c2));
     let e = tol::<T>() * T::lit(16.0);
     for order in [Order::Second, Order::Fourth] {
@@ -154,11 +189,32 @@ fn chain<T: Real>() -> Chain<T, 3> {
         "base",
         "tip",
         [
-            Joint::new("a", JointKind::Revolute, [0., 0., 1., 0., 0., 0.].map(l), l(-2.0), l(2.0)),
-            Joint::new("b", JointKind::Prismatic, [0., 0., 0., 0.6, 0., 0.8].map(l), l(-0.5), l(0.5)),
-            Joint::new("c", JointKind::Continuous, [1., 0., 0., 0., 0.4, -0.1].map(l), -inf, inf),
+            Joint::new(
+                "a",
+                JointKind::Revolute,
+                [0., 0., 1., 0., 0., 0.].map(l),
+                l(-2.0),
+                l(2.0),
+            ),
+            Joint::new(
+                "b",
+                JointKind::Prismatic,
+                [0., 0., 0., 0.6, 0., 0.8].map(l),
+                l(-0.5),
+                l(0.5),
+            ),
+            Joint::new(
+                "c",
+                JointKind::Continuous,
+                [1., 0., 0., 0., 0.4, -0.1].map(l),
+                -inf,
+                inf,
+            ),
         ],
-        Transform::from_parts([[0., -1., 0.], [1., 0., 0.], [0., 0., 1.]].map(|r| r.map(l)), [0.3, 0.1, 0.5].map(l)),
+        Transform::from_parts(
+            [[0., -1., 0.], [1., 0., 0.], [0., 0., 1.]].map(|r| r.map(l)),
+            [0.3, 0.1, 0.5].map(l),
+        ),
     )
 }
 
@@ -168,14 +224,21 @@ fn ppoe_properties<T: Real>(thetas: [f64; 3], c1: [[f64; 6]; 6], sigma: f64) {
     let covs = [
         mat6::<T>(c1),
         screw_noise(&ch.joints[1].screw, T::lit(sigma * sigma)),
-        bending_noise(&v3::<T>([0.1, 0.2, 0.3]), &Mat3::identity().scale(T::lit(sigma))),
+        bending_noise(
+            &v3::<T>([0.1, 0.2, 0.3]),
+            &Mat3::identity().scale(T::lit(sigma)),
+        ),
     ];
     let r = ch.ppoe(&th, &covs, Convention::Right);
     let l = ch.ppoe(&th, &covs, Convention::Left);
     assert_sym_psd(&r.cov);
     assert_sym_psd(&l.cov);
     let e = tol::<T>() * T::lit(16.0) * l.cov.amax().max(T::ONE);
-    assert_relative_eq!(uncertainty::right_to_left(&r.pose, &r.cov), l.cov, epsilon = e);
+    assert_relative_eq!(
+        uncertainty::right_to_left(&r.pose, &r.cov),
+        l.cov,
+        epsilon = e
+    );
     assert_relative_eq!(r.pose, ch.forward_kinematics(&th), epsilon = tol::<T>());
     // Space Jacobian columns are the base-frame twists: first-order FK check.
     let js = ch.space_jacobian(&th);
@@ -202,7 +265,12 @@ fn ppoe_properties<T: Real>(thetas: [f64; 3], c1: [[f64; 6]; 6], sigma: f64) {
 fn f32_matches_f64(xi: [f64; 6], c1: [[f64; 6]; 6], thetas: [f64; 3]) {
     let t64 = se3::exp(&v6::<f64>(xi));
     let t32 = se3::exp(&v6::<f32>(xi));
-    for (a, b) in t64.to_matrix4().iter().flatten().zip(t32.to_matrix4().iter().flatten()) {
+    for (a, b) in t64
+        .to_matrix4()
+        .iter()
+        .flatten()
+        .zip(t32.to_matrix4().iter().flatten())
+    {
         assert!((a - *b as f64).abs() <= 4e-6, "exp: {a} vs {b}");
     }
     let l64 = se3::log(&t64);
@@ -216,7 +284,10 @@ fn f32_matches_f64(xi: [f64; 6], c1: [[f64; 6]; 6], thetas: [f64; 3]) {
     let r32 = chain::<f32>().ppoe(&thetas.map(|x| x as f32), &covs32, Convention::Right);
     let scale = r64.cov.amax().max(1.0);
     for (a, b) in r64.cov.0.iter().flatten().zip(r32.cov.0.iter().flatten()) {
-        assert!((a - *b as f64).abs() <= 1e-5 * scale, "ppoe cov: {a} vs {b}");
+        assert!(
+            (a - *b as f64).abs() <= 1e-5 * scale,
+            "ppoe cov: {a} vs {b}"
+        );
     }
 }
 

@@ -20,7 +20,10 @@ const F64_BOUND: f64 = 1e-12;
 const F32_BOUND: f64 = 1e-5;
 
 fn cases(file: &str) -> Vec<Value> {
-    golden(&format!("core/{file}"))["cases"].as_array().expect("cases").clone()
+    golden(&format!("core/{file}"))["cases"]
+        .as_array()
+        .expect("cases")
+        .clone()
 }
 
 fn label(c: &Value) -> String {
@@ -45,13 +48,20 @@ fn so3_case<T: Real>(c: &Value, w: &mut [Worst; 4]) {
     let log = up_v(&so3::log(&cast_m::<T, 3, 3>(&r)));
     w[1].add(rel_err(&log.0, &vec_n::<3>(&c["log"])), &l);
     let j = up_m(&so3::left_jacobian(&cast_v::<T, 3>(&omega)));
-    w[2].add(rel_err(&flat(&j), &flat(&Matrix(mat_n::<3, 3>(&c["J"])))), &l);
+    w[2].add(
+        rel_err(&flat(&j), &flat(&Matrix(mat_n::<3, 3>(&c["J"])))),
+        &l,
+    );
     let ji = up_m(&so3::left_jacobian_inv(&cast_v::<T, 3>(&omega)));
-    w[3].add(rel_err(&flat(&ji), &flat(&Matrix(mat_n::<3, 3>(&c["J_inv"])))), &l);
+    w[3].add(
+        rel_err(&flat(&ji), &flat(&Matrix(mat_n::<3, 3>(&c["J_inv"])))),
+        &l,
+    );
 }
 
 fn run_so3<T: Real>(bound: f64, skip: fn(&Value) -> bool) {
-    let mut w = ["so3 exp", "so3 log", "so3 J", "so3 J_inv"].map(|n| Worst::new(&format!("{n} {}", core::any::type_name::<T>())));
+    let mut w = ["so3 exp", "so3 log", "so3 J", "so3 J_inv"]
+        .map(|n| Worst::new(&format!("{n} {}", core::any::type_name::<T>())));
     for c in cases("so3.json") {
         if !skip(&c) {
             so3_case::<T>(&c, &mut w);
@@ -73,7 +83,14 @@ fn so3_f32() {
 }
 
 fn run_se3<T: Real>(bound: f64, skip: fn(&Value) -> bool) {
-    let names = ["se3 exp", "se3 log", "se3 adjoint", "se3 J6", "se3 J_inv6", "se3 Q"];
+    let names = [
+        "se3 exp",
+        "se3 log",
+        "se3 adjoint",
+        "se3 J6",
+        "se3 J_inv6",
+        "se3 Q",
+    ];
     let mut w = names.map(|n| Worst::new(&format!("{n} {}", core::any::type_name::<T>())));
     for c in cases("se3.json") {
         if skip(&c) {
@@ -87,8 +104,20 @@ fn run_se3<T: Real>(bound: f64, skip: fn(&Value) -> bool) {
         w[1].add(rel_err(&log.0, &vec_n::<6>(&c["log_single"])), &l);
         let ad = up_m(&cast_t::<T>(&t_ref).adjoint());
         w[2].add(rel_err(&flat(&ad), &flat(&mat6(&c["adjoint"]))), &l);
-        w[3].add(rel_err(&flat(&up_m(&se3::left_jacobian(&xi))), &flat(&mat6(&c["J6"]))), &l);
-        w[4].add(rel_err(&flat(&up_m(&se3::left_jacobian_inv(&xi))), &flat(&mat6(&c["J_inv6"]))), &l);
+        w[3].add(
+            rel_err(
+                &flat(&up_m(&se3::left_jacobian(&xi))),
+                &flat(&mat6(&c["J6"])),
+            ),
+            &l,
+        );
+        w[4].add(
+            rel_err(
+                &flat(&up_m(&se3::left_jacobian_inv(&xi))),
+                &flat(&mat6(&c["J_inv6"])),
+            ),
+            &l,
+        );
         let q: Mat3<f64> = Matrix(mat_n::<3, 3>(&c["Q"]));
         w[5].add(rel_err(&flat(&up_m(&se3::q_matrix(&xi))), &flat(&q)), &l);
     }
@@ -118,7 +147,10 @@ fn screw_axes() {
     }
     w.check(F64_BOUND);
     let zero = Vec3::<f64>::zeros();
-    assert_eq!(se3::screw_axis(&zero, &zero, 0.0), Err(ppoe::Error::ZeroAxis));
+    assert_eq!(
+        se3::screw_axis(&zero, &zero, 0.0),
+        Err(ppoe::Error::ZeroAxis)
+    );
 }
 
 fn run_concat<T: Real>(bound: f64) {
@@ -128,19 +160,37 @@ fn run_concat<T: Real>(bound: f64) {
     let mut wgm = Worst::new(&format!("concat_globally mean {ty}"));
     for c in cases("concat_globally.json") {
         let l = label(&c);
-        let (a, ca) = (cast_t::<T>(&transform(&c["mean_A2B"])), cast_m::<T, 6, 6>(&mat6(&c["cov_A2B"])));
-        let (b, cb) = (cast_t::<T>(&transform(&c["mean_B2C"])), cast_m::<T, 6, 6>(&mat6(&c["cov_B2C"])));
+        let (a, ca) = (
+            cast_t::<T>(&transform(&c["mean_A2B"])),
+            cast_m::<T, 6, 6>(&mat6(&c["cov_A2B"])),
+        );
+        let (b, cb) = (
+            cast_t::<T>(&transform(&c["mean_B2C"])),
+            cast_m::<T, 6, 6>(&mat6(&c["cov_B2C"])),
+        );
         let (m, cov) = uncertainty::concat_globally(&a, &ca, &b, &cb, Order::Fourth);
-        wgm.add(rel_err(&flat_t(&up_t(&m)), &flat_t(&transform(&c["mean_A2C"]))), &l);
+        wgm.add(
+            rel_err(&flat_t(&up_t(&m)), &flat_t(&transform(&c["mean_A2C"]))),
+            &l,
+        );
         wg.add(rel_err(&flat(&up_m(&cov)), &flat(&mat6(&c["cov_A2C"]))), &l);
         let (_, cov2) = uncertainty::concat_globally(&a, &ca, &b, &cb, Order::Second);
-        wg2.add(rel_err(&flat(&up_m(&cov2)), &flat(&mat6(&c["cov_A2C_2nd"]))), &l);
+        wg2.add(
+            rel_err(&flat(&up_m(&cov2)), &flat(&mat6(&c["cov_A2C_2nd"]))),
+            &l,
+        );
     }
     let mut wl = Worst::new(&format!("concat_locally {ty}"));
     for c in cases("concat_locally.json") {
         let l = label(&c);
-        let (a, b) = (cast_t::<T>(&transform(&c["mean_A2B"])), cast_t::<T>(&transform(&c["mean_B2C"])));
-        let (ca, cb) = (cast_m::<T, 6, 6>(&mat6(&c["cov_A"])), cast_m::<T, 6, 6>(&mat6(&c["cov_B"])));
+        let (a, b) = (
+            cast_t::<T>(&transform(&c["mean_A2B"])),
+            cast_t::<T>(&transform(&c["mean_B2C"])),
+        );
+        let (ca, cb) = (
+            cast_m::<T, 6, 6>(&mat6(&c["cov_A"])),
+            cast_m::<T, 6, 6>(&mat6(&c["cov_B"])),
+        );
         let (m, cov) = uncertainty::concat_locally(&a, &b, &ca, &cb);
         let e_m = rel_err(&flat_t(&up_t(&m)), &flat_t(&transform(&c["mean_A2C"])));
         let e_c = rel_err(&flat(&up_m(&cov)), &flat(&mat6(&c["cov_A_total"])));
@@ -149,7 +199,10 @@ fn run_concat<T: Real>(bound: f64) {
     let mut wi = Worst::new(&format!("invert_uncertain_transform {ty}"));
     for c in cases("invert.json") {
         let l = label(&c);
-        let (m, cov) = uncertainty::invert(&cast_t::<T>(&transform(&c["mean"])), &cast_m::<T, 6, 6>(&mat6(&c["cov"])));
+        let (m, cov) = uncertainty::invert(
+            &cast_t::<T>(&transform(&c["mean"])),
+            &cast_m::<T, 6, 6>(&mat6(&c["cov"])),
+        );
         let e_m = rel_err(&flat_t(&up_t(&m)), &flat_t(&transform(&c["mean_inv"])));
         let e_c = rel_err(&flat(&up_m(&cov)), &flat(&mat6(&c["cov_inv"])));
         wi.add(e_m.max(e_c), &l);
@@ -177,13 +230,25 @@ fn pose_fusion() {
     let (mut errors, mut not_converged, mut ours_converged, mut total) = (0, 0, 0, 0);
     for c in cases("pose_fusion.json") {
         let l = label(&c);
-        let means: Vec<_> = c["means"].as_array().unwrap().iter().map(transform).collect();
+        let means: Vec<_> = c["means"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(transform)
+            .collect();
         let covs: Vec<Mat6<f64>> = c["covs"].as_array().unwrap().iter().map(mat6).collect();
-        let opts = IterationOptions { max_iterations: 100, ..IterationOptions::default() };
+        let opts = IterationOptions {
+            max_iterations: 100,
+            ..IterationOptions::default()
+        };
         let got = uncertainty::pose_fusion(&means, &covs, &opts);
         total += 1;
         if c.get("error").is_some() {
-            assert_eq!(got.map(|_| ()), Err(ppoe::Error::Singular), "{l}: singular covariance must be an error");
+            assert_eq!(
+                got.map(|_| ()),
+                Err(ppoe::Error::Singular),
+                "{l}: singular covariance must be an error"
+            );
             errors += 1;
             continue;
         }
@@ -200,14 +265,20 @@ fn pose_fusion() {
             continue;
         }
         assert!(got.converged, "{l}: ours did not converge");
-        wm.add(rel_err(&flat_t(&got.mean), &flat_t(&transform(&c["mean"]))), &l);
+        wm.add(
+            rel_err(&flat_t(&got.mean), &flat_t(&transform(&c["mean"]))),
+            &l,
+        );
         // pytransform3d's cov is evaluated one step before the final mean; at convergence the
         // difference is below rounding.
         wc.add(rel_err(&flat(&got.cov), &flat(&mat6(&c["cov"]))), &l);
         wv.add(rel_err(&[got.cost], &[num(&c["V"])]), &l);
     }
     println!("pose_fusion: {errors} singular cases rejected, {not_converged} cases where pytransform3d stopped more than 1e-13 from its fixed point");
-    println!("pose_fusion: ours converged (verified local minimum) on {ours_converged} of {} cases", total - errors);
+    println!(
+        "pose_fusion: ours converged (verified local minimum) on {ours_converged} of {} cases",
+        total - errors
+    );
     assert!(errors >= 5);
     assert!(ours_converged >= total - errors - not_converged);
     // Relative to the information scale: covariances of ill-conditioned cases amplify rounding.
@@ -218,7 +289,10 @@ fn pose_fusion() {
 
 #[test]
 fn estimators() {
-    for (file, is_rot) in [("estimate_transform.json", false), ("estimate_rotation.json", true)] {
+    for (file, is_rot) in [
+        ("estimate_transform.json", false),
+        ("estimate_rotation.json", true),
+    ] {
         let mut wm = Worst::new(&format!("{file} mean"));
         let mut wc = Worst::new(&format!("{file} cov"));
         let mut beyond = 0;
@@ -238,7 +312,11 @@ fn estimators() {
                 let e = uncertainty::estimate_gaussian_rotation(&s).unwrap();
                 let rm: Mat3<f64> = Matrix(mat_n::<3, 3>(&c[mean_key]));
                 let rc: Mat3<f64> = Matrix(mat_n::<3, 3>(&c[cov_key]));
-                (rel_err(&flat(&e.mean), &flat(&rm)), rel_err(&flat(&e.cov), &flat(&rc)), e.converged)
+                (
+                    rel_err(&flat(&e.mean), &flat(&rm)),
+                    rel_err(&flat(&e.cov), &flat(&rc)),
+                    e.converged,
+                )
             } else {
                 let s: Vec<_> = samples.iter().map(transform).collect();
                 let e = uncertainty::estimate_gaussian_transform(&s).unwrap();
@@ -260,7 +338,11 @@ fn estimators() {
 }
 
 /// The fusion cost ½ Σ Log(T·Tₖ⁻¹)ᵀ Σₖ⁻¹ Log(T·Tₖ⁻¹), evaluated independently of the solver.
-fn fusion_cost(mean: &ppoe::Transform<f64>, means: &[ppoe::Transform<f64>], covs: &[Mat6<f64>]) -> f64 {
+fn fusion_cost(
+    mean: &ppoe::Transform<f64>,
+    means: &[ppoe::Transform<f64>],
+    covs: &[Mat6<f64>],
+) -> f64 {
     means
         .iter()
         .zip(covs)
@@ -272,7 +354,12 @@ fn fusion_cost(mean: &ppoe::Transform<f64>, means: &[ppoe::Transform<f64>], covs
 }
 
 /// A converged result must be a local minimum: no small left perturbation lowers the cost.
-fn assert_local_minimum(mean: &ppoe::Transform<f64>, means: &[ppoe::Transform<f64>], covs: &[Mat6<f64>], l: &str) {
+fn assert_local_minimum(
+    mean: &ppoe::Transform<f64>,
+    means: &[ppoe::Transform<f64>],
+    covs: &[Mat6<f64>],
+    l: &str,
+) {
     let v0 = fusion_cost(mean, means, covs);
     for i in 0..6 {
         for h in [1e-5, -1e-5] {

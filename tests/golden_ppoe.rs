@@ -48,7 +48,13 @@ pub fn chain_from_golden<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
             };
             let name: &'static str = Box::leak(n.as_str().unwrap().to_string().into_boxed_str());
             let lim = vec_n::<2>(lim);
-            Joint::new(name, kind, vec_n::<6>(s).map(T::lit), T::lit(lim[0]), T::lit(lim[1]))
+            Joint::new(
+                name,
+                kind,
+                vec_n::<6>(s).map(T::lit),
+                T::lit(lim[0]),
+                T::lit(lim[1]),
+            )
         })
         .collect();
     (joints, cast_t(&transform(&g["home"])))
@@ -57,7 +63,10 @@ pub fn chain_from_golden<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
 fn run<T: Real>(bound: f64, file: &str) {
     let g = golden(&format!("ppoe/{file}.json"));
     let (joints, home) = chain_from_golden::<T>(&g);
-    let chain = ChainRef { joints: &joints, home };
+    let chain = ChainRef {
+        joints: &joints,
+        home,
+    };
     let ty = core::any::type_name::<T>();
     let mut w = [
         Worst::new(&format!("{file} clip {ty}")),
@@ -74,21 +83,44 @@ fn run<T: Real>(bound: f64, file: &str) {
             continue;
         }
         let th: Vec<T> = thetas.iter().map(|x| T::lit(*x)).collect();
-        let covs: Vec<Mat6<T>> = c["covs"].as_array().unwrap().iter().map(|m| cast_m(&mat6(m))).collect();
+        let covs: Vec<Mat6<T>> = c["covs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|m| cast_m(&mat6(m)))
+            .collect();
         let mut clipped = vec![T::ZERO; th.len()];
         chain.clip(&th, &mut clipped, true).unwrap();
         let clipped64: Vec<f64> = clipped.iter().map(|x| Real::to_f64(*x)).collect();
         w[0].add(rel_err(&clipped64, &vecf(&c["thetas_clipped"])), l);
         let compat = chain.ppoe(&th, &covs, Convention::Pytransform3d).unwrap();
-        w[1].add(rel_err(&flat_t(&up_t(&compat.pose)), &flat_t(&transform(&c["pose"]))), l);
-        w[2].add(rel_err(&flat(&up_m(&compat.cov)), &flat(&mat6(&c["cov_pytransform3d"]))), l);
+        w[1].add(
+            rel_err(
+                &flat_t(&up_t(&compat.pose)),
+                &flat_t(&transform(&c["pose"])),
+            ),
+            l,
+        );
+        w[2].add(
+            rel_err(
+                &flat(&up_m(&compat.cov)),
+                &flat(&mat6(&c["cov_pytransform3d"])),
+            ),
+            l,
+        );
         // Right/left from the clipped values (continuous joints with stated limits are not
         // clipped by the default conventions; the oracle always clips).
         let right = chain.ppoe_checked(&clipped, &covs, Convention::Right);
         let right = right.unwrap_or_else(|e| panic!("{l}: {e}"));
-        w[3].add(rel_err(&flat(&up_m(&right.cov)), &flat(&mat6(&c["cov_right"]))), l);
+        w[3].add(
+            rel_err(&flat(&up_m(&right.cov)), &flat(&mat6(&c["cov_right"]))),
+            l,
+        );
         let left = chain.ppoe(&clipped, &covs, Convention::Left).unwrap();
-        w[4].add(rel_err(&flat(&up_m(&left.cov)), &flat(&mat6(&c["cov_left"]))), l);
+        w[4].add(
+            rel_err(&flat(&up_m(&left.cov)), &flat(&mat6(&c["cov_left"]))),
+            l,
+        );
     }
     for x in &w {
         x.check(bound);
@@ -113,10 +145,18 @@ fn ppoe_f32_all_robots() {
 #[test]
 fn seed_frames_present() {
     let g = golden("ppoe/seed_linkmount_tcp.json");
-    let labels: Vec<&str> = g["cases"].as_array().unwrap().iter().map(|c| c["label"].as_str().unwrap()).collect();
+    let labels: Vec<&str> = g["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["label"].as_str().unwrap())
+        .collect();
     assert!(labels.contains(&"seed_initial"));
     for k in 0..200 {
-        assert!(labels.contains(&format!("frame_{k}").as_str()), "frame_{k} missing");
+        assert!(
+            labels.contains(&format!("frame_{k}").as_str()),
+            "frame_{k} missing"
+        );
     }
     let _ = Vec6::<f64>::zeros() + Vector([0.0; 6]);
 }

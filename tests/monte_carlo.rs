@@ -20,8 +20,22 @@ fn diag(d: [f64; 6]) -> Mat6<f64> {
 /// Barfoot & Furgale (2014) two-pose compounding: ξ₁ = (π/6,0,0 | 0,2,0),
 /// ξ₂ = (0,π/4,0 | 0,0,1), Σ = α·diag(½,1,½ | 10,5,5) for both.
 fn bf_errors(alpha: f64, seed: u64) -> (f64, f64) {
-    let t1 = se3::exp(&Vector([std::f64::consts::FRAC_PI_6, 0.0, 0.0, 0.0, 2.0, 0.0]));
-    let t2 = se3::exp(&Vector([0.0, std::f64::consts::FRAC_PI_4, 0.0, 0.0, 0.0, 1.0]));
+    let t1 = se3::exp(&Vector([
+        std::f64::consts::FRAC_PI_6,
+        0.0,
+        0.0,
+        0.0,
+        2.0,
+        0.0,
+    ]));
+    let t2 = se3::exp(&Vector([
+        0.0,
+        std::f64::consts::FRAC_PI_4,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+    ]));
     let s = diag([0.5, 1.0, 0.5, 10.0, 5.0, 5.0]) * alpha;
     let g = Gaussian6::new(&s);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -77,9 +91,19 @@ fn concat_locally_matches_sampling() {
 
 /// Samples the PPOE model T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M and returns the right perturbations
 /// η = Log(T̄⁻¹·T).
-fn sample_chain(chain: &ChainRef<f64>, thetas: &[f64], covs: &[Mat6<f64>], seed: u64) -> Vec<Vec6<f64>> {
+fn sample_chain(
+    chain: &ChainRef<f64>,
+    thetas: &[f64],
+    covs: &[Mat6<f64>],
+    seed: u64,
+) -> Vec<Vec6<f64>> {
     let gs: Vec<Gaussian6> = covs.iter().map(Gaussian6::new).collect();
-    let ds: Vec<Transform<f64>> = chain.joints.iter().zip(thetas).map(|(j, t)| j.displacement(j.clip(*t, false))).collect();
+    let ds: Vec<Transform<f64>> = chain
+        .joints
+        .iter()
+        .zip(thetas)
+        .map(|(j, t)| j.displacement(j.clip(*t, false)))
+        .collect();
     let mean_inv = chain.forward_kinematics(thetas).unwrap().inverse();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     (0..N)
@@ -103,7 +127,13 @@ fn seed_chain() -> (Vec<ppoe::chain::Joint<f64>>, Transform<f64>) {
         .map(|((n, s), l)| {
             let name: &'static str = Box::leak(n.as_str().unwrap().to_string().into_boxed_str());
             let l = vec_n::<2>(l);
-            ppoe::chain::Joint::new(name, ppoe::chain::JointKind::Revolute, vec_n::<6>(s), l[0], l[1])
+            ppoe::chain::Joint::new(
+                name,
+                ppoe::chain::JointKind::Revolute,
+                vec_n::<6>(s),
+                l[0],
+                l[1],
+            )
         })
         .collect();
     (j, transform(&g["home"]))
@@ -113,19 +143,28 @@ fn seed_chain() -> (Vec<ppoe::chain::Joint<f64>>, Transform<f64>) {
 fn seed_covs(scale: f64) -> Vec<Mat6<f64>> {
     let z = diag([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
     let y = diag([0.0, 1.0, 0.0, 0.0, 0.0, 0.0]);
-    [z, y, y, Matrix::zeros(), y, Matrix::zeros()].iter().map(|c| *c * (0.05 * scale)).collect()
+    [z, y, y, Matrix::zeros(), y, Matrix::zeros()]
+        .iter()
+        .map(|c| *c * (0.05 * scale))
+        .collect()
 }
 
 /// Seed-animation joint values at frame k.
 fn frame(k: usize) -> Vec<f64> {
     let angle = 0.5 * (2.0 * std::f64::consts::PI * (0.5 + k as f64 / 200.0)).cos();
-    [1.0, 1.0, 1.0, 0.0, 1.0, 0.0].iter().map(|t| angle * t).collect()
+    [1.0, 1.0, 1.0, 0.0, 1.0, 0.0]
+        .iter()
+        .map(|t| angle * t)
+        .collect()
 }
 
 #[test]
 fn ppoe_right_convention_matches_sampling_on_seed_robot() {
     let (joints, home) = seed_chain();
-    let chain = ChainRef { joints: &joints, home };
+    let chain = ChainRef {
+        joints: &joints,
+        home,
+    };
     for (k, seed) in [(0usize, 10u64), (100, 11)] {
         let th = frame(k);
         for (scale, bound) in [(1.0 / 16.0, 0.015), (1.0, 0.06)] {
@@ -152,13 +191,25 @@ fn ppoe_right_convention_matches_sampling_on_seed_robot() {
 #[test]
 fn fourth_order_ppoe_is_closer_at_large_noise() {
     let (joints, home) = seed_chain();
-    let chain = ChainRef { joints: &joints, home };
+    let chain = ChainRef {
+        joints: &joints,
+        home,
+    };
     let th = frame(0);
     let covs = seed_covs(4.0);
     let mc = second_moment(&sample_chain(&chain, &th, &covs, 21));
     let e2 = frob_rel(&chain.ppoe(&th, &covs, Convention::Right).unwrap().cov, &mc);
-    let e4 = frob_rel(&chain.ppoe_fourth_order(&th, &covs, Convention::Right).unwrap().cov, &mc);
+    let e4 = frob_rel(
+        &chain
+            .ppoe_fourth_order(&th, &covs, Convention::Right)
+            .unwrap()
+            .cov,
+        &mc,
+    );
     println!("seed x4 noise: 2nd order {e2:.4}, 4th order {e4:.4}");
-    assert!(e4 < e2 / 4.0, "4th order {e4} not clearly closer than 2nd {e2}");
+    assert!(
+        e4 < e2 / 4.0,
+        "4th order {e4} not clearly closer than 2nd {e2}"
+    );
     assert!(e4 < 0.015, "{e4}");
 }

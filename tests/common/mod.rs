@@ -9,14 +9,20 @@ use std::path::PathBuf;
 
 /// Path of a file below `test_data/`.
 pub fn data_path(rel: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("test_data").join(rel)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("test_data")
+        .join(rel)
 }
 
 /// Parses a golden JSON file below `test_data/golden/`.
 pub fn golden(rel: &str) -> Value {
     let path = data_path(&format!("golden/{rel}"));
-    let text = std::fs::read_to_string(&path)
-        .unwrap_or_else(|e| panic!("cannot read {}: {e} (regenerate with test_data/reference)", path.display()));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| {
+        panic!(
+            "cannot read {}: {e} (regenerate with test_data/reference)",
+            path.display()
+        )
+    });
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
@@ -97,7 +103,9 @@ pub struct Gaussian6 {
 impl Gaussian6 {
     pub fn new(cov: &Mat6<f64>) -> Self {
         let shift = cov.amax() * 1e-14 + 1e-300;
-        let l = (*cov + Mat6::identity() * shift).cholesky().expect("PSD covariance");
+        let l = (*cov + Mat6::identity() * shift)
+            .cholesky()
+            .expect("PSD covariance");
         Self { l }
     }
 
@@ -134,7 +142,9 @@ pub fn second_moment(samples: &[Vec6<f64>]) -> Mat6<f64> {
 }
 
 /// Converts an f64 matrix to the scalar under test.
-pub fn cast_m<T: ppoe::Real, const R: usize, const C: usize>(m: &Matrix<f64, R, C>) -> Matrix<T, R, C> {
+pub fn cast_m<T: ppoe::Real, const R: usize, const C: usize>(
+    m: &Matrix<f64, R, C>,
+) -> Matrix<T, R, C> {
     Matrix(m.0.map(|r| r.map(T::lit)))
 }
 
@@ -143,11 +153,16 @@ pub fn cast_v<T: ppoe::Real, const N: usize>(v: &Vector<f64, N>) -> Vector<T, N>
 }
 
 pub fn cast_t<T: ppoe::Real>(t: &Transform<f64>) -> Transform<T> {
-    Transform { rotation: cast_m(&t.rotation), translation: cast_v(&t.translation) }
+    Transform {
+        rotation: cast_m(&t.rotation),
+        translation: cast_v(&t.translation),
+    }
 }
 
 /// Back to f64 (exact).
-pub fn up_m<T: ppoe::Real, const R: usize, const C: usize>(m: &Matrix<T, R, C>) -> Matrix<f64, R, C> {
+pub fn up_m<T: ppoe::Real, const R: usize, const C: usize>(
+    m: &Matrix<T, R, C>,
+) -> Matrix<f64, R, C> {
     Matrix(m.0.map(|r| r.map(|x| x.to_f64())))
 }
 
@@ -156,7 +171,10 @@ pub fn up_v<T: ppoe::Real, const N: usize>(v: &Vector<T, N>) -> Vector<f64, N> {
 }
 
 pub fn up_t<T: ppoe::Real>(t: &Transform<T>) -> Transform<f64> {
-    Transform { rotation: up_m(&t.rotation), translation: up_v(&t.translation) }
+    Transform {
+        rotation: up_m(&t.rotation),
+        translation: up_v(&t.translation),
+    }
 }
 
 /// Tracks the worst error over the cases of one golden file.
@@ -169,19 +187,34 @@ pub struct Worst {
 
 impl Worst {
     pub fn new(name: &str) -> Self {
-        Self { name: name.into(), max: 0.0, label: String::new(), count: 0 }
+        Self {
+            name: name.into(),
+            max: 0.0,
+            label: String::new(),
+            count: 0,
+        }
     }
     pub fn add(&mut self, err: f64, label: &str) {
         self.count += 1;
-        if !(err <= self.max) {
+        if err.is_nan() || err > self.max {
             self.max = err;
             self.label = label.into();
         }
     }
     /// Prints the worst error and asserts it is within `tol`.
     pub fn check(&self, tol: f64) {
-        println!("{:<40} {:>5} cases, worst {:.3e} ({})", self.name, self.count, self.max, self.label);
+        println!(
+            "{:<40} {:>5} cases, worst {:.3e} ({})",
+            self.name, self.count, self.max, self.label
+        );
         assert!(self.count > 0, "{}: no cases", self.name);
-        assert!(self.max <= tol, "{}: worst error {:.3e} > {:.1e} at case {}", self.name, self.max, tol, self.label);
+        assert!(
+            self.max <= tol,
+            "{}: worst error {:.3e} > {:.1e} at case {}",
+            self.name,
+            self.max,
+            tol,
+            self.label
+        );
     }
 }
