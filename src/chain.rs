@@ -122,6 +122,36 @@ pub struct UncertainPose<T> {
     pub cov: Mat6<T>,
 }
 
+impl<T: Real> approx::AbsDiffEq for UncertainPose<T> {
+    type Epsilon = T;
+    fn default_epsilon() -> T {
+        T::default_epsilon()
+    }
+    fn abs_diff_eq(&self, other: &Self, epsilon: T) -> bool {
+        self.pose.abs_diff_eq(&other.pose, epsilon) && self.cov.abs_diff_eq(&other.cov, epsilon)
+    }
+}
+
+impl<T: Real> approx::RelativeEq for UncertainPose<T> {
+    fn default_max_relative() -> T {
+        T::default_max_relative()
+    }
+    fn relative_eq(&self, other: &Self, epsilon: T, max_relative: T) -> bool {
+        self.pose.relative_eq(&other.pose, epsilon, max_relative)
+            && self.cov.relative_eq(&other.cov, epsilon, max_relative)
+    }
+}
+
+impl<T: Real> approx::UlpsEq for UncertainPose<T> {
+    fn default_max_ulps() -> u32 {
+        T::default_max_ulps()
+    }
+    fn ulps_eq(&self, other: &Self, epsilon: T, max_ulps: u32) -> bool {
+        self.pose.ulps_eq(&other.pose, epsilon, max_ulps)
+            && self.cov.ulps_eq(&other.cov, epsilon, max_ulps)
+    }
+}
+
 /// A chain whose joints live in a slice: the runtime-sized counterpart of [`Chain`]
 /// (used by host tools that load a URDF at run time). Same algorithms, same code path.
 #[derive(Clone, Copy, Debug, PartialEq)]
