@@ -1,0 +1,626 @@
+//! Property tests of `ppoe::ellipsoid` (each property written once, generically, and run
+//! for f32 and f64), and a Monte Carlo check of the marginal position ellipsoid and the
+//! second-order position mean on a synthetic covariance.
+
+use ppoe::ellipsoid::{
+    chi2_3_probability, chi2_3_radius, lift_surface, marginal_surface, position_covariance,
+    position_ellipsoid, position_mean_second_order, surface_grid, to_ellipsoid, LiftSurface,
+    Surface, SymmetricEigen,
+};
+use ppoe::{se3, Mat3, Mat6, Matrix, Real, Transform, Vec3, Vec6, Vector};
+use proptest::collection::vec;
+use proptest::prelude::*;
+use proptest::test_runner::TestCaseError;
+
+/// `cases` cases, no failure persistence (it needs a lib.rs beside the test file).
+fn config(cases: u32) -> ProptestConfig {
+    ProptestConfig {
+        cases,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    }
+}
+
+/// The exact f64 value of a scalar.
+fn r64<T: Real>(x: T) -> f64 {
+    <T as Real>::to_f64(x)
+}
+
+fn eps<T: Real>() -> f64 {
+    r64(T::EPS)
+}
+
+// ---------------------------------------------------------------------------------------
+// Random symmetric matrices
+
+/// A symmetric N×N test matrix of one of four kinds, from `2·N²` numbers in [−1, 1]:
+/// 0 dense symmetric (indefinite), 1 PSD `L·Lᵀ` of rank `rank`, 2 diagonal with values
+/// from {−1, 0, 1, 2} (repeated eigenvalues, exact zeros), 3 graded PSD `G·L·Lᵀ·G` with
+/// `G = diag(10^(−2i))` (scales 1 .. 10⁻²⁽ᴺ⁻¹⁾), all times 10^exp. Built in f64, rounded
+/// to T.
+fn test_matrix<T: Real, const N: usize>(
+    kind: u8,
+    rank: usize,
+    x: &[f64],
+    exp: i32,
+) -> Matrix<T, N, N> {
+    let s = 10f64.powi(exp);
+    let mut a = [[0.0_f64; N]; N];
+    match kind {
+        0 => {
+            for i in 0..N {
+                for j in 0..=i {
+                    a[i][j] = x[i * N + j];
+                    a[j][i] = x[i * N + j];
+                }
+            }
+        }
+        2 => {
+            for (i, row) in a.iter_mut().enumerate() {
+                row[i] = [-1.0, 0.0, 1.0, 2.0][((x[i] + 1.0) * 1.999) as usize];
+            }
+        }
+        _ => {
+            let r = rank.min(N);
+            for i in 0..N {
+                for j in 0..N {
+                    a[i][j] = (0..r).map(|k| x[i * N + k] * x[j * N + k]).sum();
+                    if kind == 3 {
+                        a[i][j] *= 10f64.powi(-2 * (i + j) as i32);
+                    }
+                }
+            }
+        }
+    }
+    Matrix(core::array::from_fn(|i| {
+        core::array::from_fn(|j| T::lit(a[i][j] * s))
+    }))
+}
+
+fn max_abs<T: Real, const R: usize, const C: usize>(m: &Matrix<T, R, C>) -> f64 {
+    r64(m.amax())
+}
+
+/// Eigen-decomposition: converged, values descending, vectors orthonormal, sign convention,
+/// reconstruction; PSD inputs give values ≥ −tol (clamped: ≥ 0).
+fn prop_eigen<T: Real, const N: usize>(
+    kind: u8,
+    rank: usize,
+    x: &[f64],
+    exp: i32,
+) -> Result<(), TestCaseError> {
+    let a: Matrix<T, N, N> = test_matrix(kind, rank, x, exp);
+    let e = SymmetricEigen::new(&a).map_err(|err| TestCaseError::fail(format!("{err}")))?;
+    let n = N as f64;
+    let norm = max_abs(&a) * n; // ≥ ‖A‖₂
+    prop_assert!(e.converged, "not converged after {} sweeps", e.sweeps);
+    prop_assert!(e.sweeps <= 12, "{} sweeps", e.sweeps);
+    for k in 1..N {
+        prop_assert!(
+            e.values.0[k - 1] >= e.values.0[k],
+            "not descending: {:?}",
+            e.values
+        );
+    }
+    let orth = max_abs(&(e.vectors.transpose() * e.vectors - Matrix::identity()));
+    prop_assert!(orth <= 8.0 * n * eps::<T>(), "orthonormality {orth:e}");
+    let rec = max_abs(&(e.reconstruct() - a));
+    prop_assert!(
+        rec <= 8.0 * n * eps::<T>() * norm,
+        "reconstruction {rec:e} (‖A‖ ≈ {norm:e})"
+    );
+    for k in 0..N {
+        let col = e.vectors.column(k);
+        let mut best = 0;
+        for i in 0..N {
+            if col.0[i].abs() > col.0[best].abs() {
+                best = i;
+            }
+        }
+        prop_assert!(
+            col.0[best] > T::ZERO,
+            "sign convention, column {k}: {:?}",
+            col
+        );
+    }
+    if kind == 1 || kind == 3 {
+        prop_assert!(
+            r64(e.min_value()) >= -8.0 * n * eps::<T>() * norm,
+            "PSD input: {:?}",
+            e.values
+        );
+        prop_assert!(e.is_psd(T::TOL));
+        let c = e.clamped();
+        prop_assert!(c.values.0.iter().all(|v| *v >= T::ZERO));
+        prop_assert!(max_abs(&(c.reconstruct() - a)) <= 16.0 * n * eps::<T>() * norm);
+        // The PSD square root squares back; the pseudo-inverse root whitens the range.
+        let s = e.sqrt();
+        prop_assert!(max_abs(&(s * s - a)) <= 64.0 * n * eps::<T>() * norm.max(f64::MIN_POSITIVE));
+        let w = e.pinv_sqrt();
+        prop_assert!(w.is_finite());
+    }
+    Ok(())
+}
+
+/// `to_ellipsoid`: ascending radii, det +1, `R·diag(radii²)·Rᵀ = clamp(cov)`.
+fn prop_to_ellipsoid<T: Real>(
+    kind: u8,
+    rank: usize,
+    x: &[f64],
+    exp: i32,
+) -> Result<(), TestCaseError> {
+    let cov: Mat3<T> = test_matrix(kind, rank, x, exp);
+    let mean = Vec3::new(T::lit(x[0]), T::lit(x[1]), T::lit(x[2]));
+    let (e2o, radii) =
+        to_ellipsoid(&mean, &cov).map_err(|err| TestCaseError::fail(format!("{err}")))?;
+    prop_assert!(radii.0[0] <= radii.0[1] && radii.0[1] <= radii.0[2] && radii.0[0] >= T::ZERO);
+    prop_assert!((r64(e2o.rotation.determinant()) - 1.0).abs() <= 32.0 * eps::<T>());
+    prop_assert_eq!(e2o.translation, mean);
+    let rec = Mat3::from_diagonal(&radii.map(|r| r * r)).congruence(&e2o.rotation);
+    let clamped = SymmetricEigen::new(&cov).unwrap().clamped().reconstruct();
+    prop_assert!(
+        max_abs(&(rec - clamped)) <= 64.0 * eps::<T>() * max_abs(&cov).max(f64::MIN_POSITIVE)
+    );
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config(512))]
+
+    #[test]
+    fn eigen_6_f64(kind in 0u8..4, rank in 0usize..=6, x in vec(-1.0..1.0f64, 72), exp in -8i32..8) {
+        prop_eigen::<f64, 6>(kind, rank, &x, exp)?;
+    }
+
+    #[test]
+    fn eigen_6_f32(kind in 0u8..4, rank in 0usize..=6, x in vec(-1.0..1.0f64, 72), exp in -8i32..8) {
+        prop_eigen::<f32, 6>(kind, rank, &x, exp)?;
+    }
+
+    #[test]
+    fn eigen_3_f64(kind in 0u8..4, rank in 0usize..=3, x in vec(-1.0..1.0f64, 18), exp in -8i32..8) {
+        prop_eigen::<f64, 3>(kind, rank, &x, exp)?;
+    }
+
+    #[test]
+    fn eigen_3_f32(kind in 0u8..4, rank in 0usize..=3, x in vec(-1.0..1.0f64, 18), exp in -8i32..8) {
+        prop_eigen::<f32, 3>(kind, rank, &x, exp)?;
+    }
+
+    #[test]
+    fn to_ellipsoid_f64(kind in 1u8..4, rank in 0usize..=3, x in vec(-1.0..1.0f64, 18), exp in -8i32..8) {
+        prop_to_ellipsoid::<f64>(kind, rank, &x, exp)?;
+    }
+
+    #[test]
+    fn to_ellipsoid_f32(kind in 1u8..4, rank in 0usize..=3, x in vec(-1.0..1.0f64, 18), exp in -8i32..8) {
+        prop_to_ellipsoid::<f32>(kind, rank, &x, exp)?;
+    }
+}
+
+#[test]
+fn eigen_extreme_scales_and_errors() {
+    fn check<T: Real>() {
+        // Huge and subnormal matrices: no overflow, no NaN.
+        for s in [
+            r64(T::max_value()) / 4.0,
+            r64(T::min_positive_value()) * 1e-3,
+            1.0,
+        ] {
+            let a: Mat3<T> = to_t(
+                &[[1.0, 0.5, -1.0], [0.5, -1.0, 0.25], [-1.0, 0.25, 0.5]].map(|r| r.map(|x| x * s)),
+            );
+            let e = SymmetricEigen::new(&a).unwrap();
+            assert!(
+                e.values.is_finite() && e.vectors.is_finite() && e.converged,
+                "{s:e}: {e:?}"
+            );
+            let rec = e.reconstruct();
+            assert!(rec.is_finite());
+        }
+        let mut bad = Mat6::<T>::identity();
+        bad.0[2][4] = T::nan();
+        assert_eq!(SymmetricEigen::new(&bad), Err(ppoe::Error::NonFinite));
+        bad.0[2][4] = T::infinity();
+        assert_eq!(SymmetricEigen::new(&bad), Err(ppoe::Error::NonFinite));
+        // Only the symmetric part is read.
+        let mut asym = Mat3::<T>::identity();
+        asym.0[0][1] = T::ONE;
+        let e = SymmetricEigen::new(&asym).unwrap();
+        let expected = SymmetricEigen::new(&asym.symmetrize()).unwrap();
+        assert_eq!(e, expected);
+        // Zero matrix: zeros and the identity.
+        let z = SymmetricEigen::new(&Mat6::<T>::zeros()).unwrap();
+        assert_eq!(z.values, Vec6::zeros());
+        assert_eq!(z.vectors, Mat6::identity());
+    }
+    check::<f32>();
+    check::<f64>();
+}
+
+// ---------------------------------------------------------------------------------------
+// Surfaces: never NaN, first-order agreement of lift and marginal, f32 vs f64.
+
+/// A 6×6 PSD covariance `L·Lᵀ` of rank `rank` with rotational and translational scales
+/// 10^er and 10^et; `zero_block` 1 zeroes the rotation rows of L (no rotational noise), 2
+/// the translation rows (Σ_vv = 0, only rotational noise).
+fn test_cov(rank: usize, x: &[f64], er: i32, et: i32, zero_block: u8) -> [[f64; 6]; 6] {
+    let mut l = [[0.0_f64; 6]; 6];
+    for i in 0..6 {
+        let s = if i < 3 {
+            10f64.powi(er)
+        } else {
+            10f64.powi(et)
+        };
+        let zeroed = (zero_block == 1 && i < 3) || (zero_block == 2 && i >= 3);
+        for k in 0..rank.min(6) {
+            l[i][k] = if zeroed { 0.0 } else { x[i * 6 + k] * s };
+        }
+    }
+    core::array::from_fn(|i| core::array::from_fn(|j| (0..6).map(|k| l[i][k] * l[j][k]).sum()))
+}
+
+fn to_t<T: Real, const R: usize, const C: usize>(m: &[[f64; C]; R]) -> Matrix<T, R, C> {
+    Matrix(m.map(|row| row.map(T::lit)))
+}
+
+fn mean_pose<T: Real>(x: &[f64]) -> Transform<T> {
+    let xi = Vec6::from([x[0] * 3.0, x[1] * 3.0, x[2] * 3.0, x[3], x[4], x[5]].map(T::lit));
+    se3::exp(&xi)
+}
+
+fn prop_surfaces_finite<T: Real>(
+    rank: usize,
+    x: &[f64],
+    er: i32,
+    et: i32,
+    zero_block: u8,
+    k: f64,
+    n_steps: usize,
+) -> Result<(), TestCaseError> {
+    let cov: Mat6<T> = to_t(&test_cov(rank, x, er, et, zero_block));
+    let mean = mean_pose::<T>(&x[36..]);
+    let k = T::lit(k);
+    let mut out = vec![Vec3::<T>::zeros(); n_steps * n_steps];
+    for surface in [Surface::Lift, Surface::Marginal, Surface::Pytransform3d] {
+        let n = surface_grid(surface, &mean, &cov, k, n_steps, &mut out)
+            .map_err(|e| TestCaseError::fail(format!("{e}")))?;
+        prop_assert_eq!(n, n_steps * n_steps);
+        prop_assert!(
+            out.iter().all(|p| p.is_finite()),
+            "{:?}: non-finite point (rank {})",
+            surface,
+            rank
+        );
+    }
+    let (e2o, radii) =
+        position_ellipsoid(&mean, &cov).map_err(|e| TestCaseError::fail(format!("{e}")))?;
+    prop_assert!(radii.is_finite() && e2o.rotation.is_finite());
+    prop_assert!(position_mean_second_order(&mean, &cov).is_finite());
+    let lift = LiftSurface::new(&mean, &cov).map_err(|e| TestCaseError::fail(format!("{e}")))?;
+    prop_assert!(lift.basis.is_finite());
+    Ok(())
+}
+
+/// At every grid point, `lift − marginal = R̄·(p(Exp(ξ)) − v)` with ξ = (ω, v), and
+/// `|p(Exp ξ) − v| = |(J(ω) − I)·v| ≤ |ω|·|v|` (for |ω| ≤ 2): the two surfaces agree at
+/// first order, point by point.
+fn prop_lift_first_order<T: Real>(
+    rank: usize,
+    x: &[f64],
+    er: i32,
+    et: i32,
+    k: f64,
+) -> Result<(), TestCaseError> {
+    let cov: Mat6<T> = to_t(&test_cov(rank, x, er, et, 0));
+    let mean = mean_pose::<T>(&x[36..]);
+    let n_steps = 9;
+    let mut lift = vec![Vec3::<T>::zeros(); n_steps * n_steps];
+    let mut marg = lift.clone();
+    lift_surface(&mean, &cov, T::lit(k), n_steps, &mut lift).unwrap();
+    marginal_surface(&mean, &cov, T::lit(k), n_steps, &mut marg).unwrap();
+    let map = LiftSurface::new(&mean, &cov).unwrap();
+    let scale = r64(mean.translation.norm()) + 1.0;
+    for i in 0..n_steps {
+        for j in 0..n_steps {
+            let u = ppoe::ellipsoid::unit_sphere_point::<T>(n_steps, i, j);
+            let xi = map.perturbation(&u.scale(T::lit(k)));
+            let (w, v) = (r64(xi.rotation().norm()), r64(xi.translation().norm()));
+            prop_assume!(w <= 2.0);
+            let d = r64((lift[i * n_steps + j] - marg[i * n_steps + j]).norm());
+            let tol = w * v + 64.0 * eps::<T>() * (scale + v) + 1e3 * eps::<T>() * v;
+            prop_assert!(
+                d <= tol,
+                "({i},{j}): |lift − marginal| = {d:e} > {tol:e} (|ω| {w:e}, |v| {v:e})"
+            );
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config(256))]
+
+    #[test]
+    fn surfaces_never_nan_f64(rank in 0usize..=6, x in vec(-1.0..1.0f64, 42), er in -8i32..1, et in -8i32..2,
+                              zero_block in 0u8..3, k in 0.0..5.0f64, n_steps in 2usize..9) {
+        prop_surfaces_finite::<f64>(rank, &x, er, et, zero_block, k, n_steps)?;
+    }
+
+    #[test]
+    fn surfaces_never_nan_f32(rank in 0usize..=6, x in vec(-1.0..1.0f64, 42), er in -8i32..1, et in -8i32..2,
+                              zero_block in 0u8..3, k in 0.0..5.0f64, n_steps in 2usize..9) {
+        prop_surfaces_finite::<f32>(rank, &x, er, et, zero_block, k, n_steps)?;
+    }
+
+    #[test]
+    fn lift_equals_marginal_at_first_order_f64(rank in 1usize..=6, x in vec(-1.0..1.0f64, 42), er in -4i32..0,
+                                              et in -4i32..1, k in 0.0..4.0f64) {
+        prop_lift_first_order::<f64>(rank, &x, er, et, k)?;
+    }
+
+    #[test]
+    fn lift_equals_marginal_at_first_order_f32(rank in 1usize..=6, x in vec(-1.0..1.0f64, 42), er in -4i32..0,
+                                              et in -4i32..1, k in 0.0..4.0f64) {
+        prop_lift_first_order::<f32>(rank, &x, er, et, k)?;
+    }
+
+    /// f32 surfaces within the documented bound of f64 surfaces on the same (f32-exact)
+    /// inputs: 8·ε₃₂·(1 + r) relative to max(1, max|y|), r = the largest |ξ| on the grid
+    /// (the bound of tests/ellipsoid_golden.rs), for well-conditioned Σ_vv.
+    #[test]
+    fn f32_within_bound_of_f64(x in vec(-1.0..1.0f64, 42), er in -3i32..0, et in -3i32..1, k in 0.0..4.0f64) {
+        let cov64 = test_cov(6, &x, er, et, 0);
+        // Round the inputs to f32 so both precisions see the same numbers.
+        let cov32: Mat6<f32> = to_t(&cov64);
+        let cov: Mat6<f64> = Matrix(cov32.0.map(|r| r.map(|v| v as f64)));
+        let mean32 = mean_pose::<f32>(&x[36..]);
+        let mean = Transform::<f64>::from_matrix4(&mean32.to_matrix4().map(|r| r.map(|v| v as f64)));
+        let k32 = k as f32;
+        let ev = SymmetricEigen::new(&cov.block(1, 1)).unwrap();
+        prop_assume!(ev.min_value() > 1e-3 * ev.max_value());
+        let n_steps = 7;
+        for surface in [Surface::Lift, Surface::Marginal, Surface::Pytransform3d] {
+            if surface == Surface::Pytransform3d {
+                // Only where the top-3 eigenvectors of the 6×6 covariance are well
+                // separated (else f32 and f64 may pick different bases).
+                let e6 = SymmetricEigen::new(&cov).unwrap();
+                let v = e6.values.0;
+                let gap = (0..3).map(|i| v[i] - v[i + 1]).fold(f64::INFINITY, f64::min);
+                if gap < 1e-2 * v[0] {
+                    continue;
+                }
+            }
+            let mut a = vec![Vec3::<f32>::zeros(); n_steps * n_steps];
+            let mut b = vec![Vec3::<f64>::zeros(); n_steps * n_steps];
+            surface_grid(surface, &mean32, &cov32, k32, n_steps, &mut a).unwrap();
+            surface_grid(surface, &mean, &cov, k32 as f64, n_steps, &mut b).unwrap();
+            let r = if surface == Surface::Pytransform3d {
+                k * SymmetricEigen::new(&cov).unwrap().max_value().sqrt()
+            } else {
+                let map = LiftSurface::new(&mean, &cov).unwrap();
+                k * (0..3).map(|c| map.basis.column(c).norm()).sum::<f64>()
+            };
+            let ymax = b.iter().fold(1.0_f64, |m, p| m.max(p.amax()));
+            let diff = a.iter().zip(&b).fold(0.0_f64, |m, (p, q)| {
+                m.max((0..3).map(|i| (p.0[i] as f64 - q.0[i]).abs()).fold(0.0, f64::max))
+            });
+            let e = diff / ymax;
+            // The Pytransform3d surface also inherits the eigenvector error ε₃₂·‖Σ‖/gap.
+            let tol = if surface == Surface::Pytransform3d { 800.0 } else { 8.0 } * f32::EPSILON as f64 * (1.0 + r);
+            prop_assert!(e <= tol, "{:?}: f32 vs f64 {e:e} > {tol:e} (r {r})", surface);
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// χ²₃ helpers
+
+fn prop_chi2_roundtrip<T: Real>(p: f64, k: f64) -> Result<(), TestCaseError> {
+    // p → k → p
+    let kk = chi2_3_radius(T::lit(p)).expect("p in (0, 1)");
+    let pp = r64(chi2_3_probability(kk));
+    let pt = r64(T::lit(p));
+    prop_assert!(
+        (pp - pt).abs() <= 8.0 * eps::<T>(),
+        "p {p} → k {} → p {pp}",
+        r64(kk)
+    );
+    // k → p → k, where the inverse is well conditioned: dk = dp / pdf(k), and for small k
+    // the relative error of p (≈ ε) gives a relative error ≈ ε/3 in k.
+    let kt = r64(T::lit(k));
+    let pk = chi2_3_probability(T::lit(k));
+    if r64(pk) < 1.0 {
+        let back = r64(chi2_3_radius(pk).expect("p < 1"));
+        let pdf = (2.0 / std::f64::consts::PI).sqrt() * kt * kt * (-0.5 * kt * kt).exp();
+        let tol = 8.0 * eps::<T>() * (kt + (r64(pk) + eps::<T>()) / pdf.max(f64::MIN_POSITIVE));
+        prop_assert!(
+            (back - kt).abs() <= tol,
+            "k {kt} → p {} → k {back} (tol {tol:e})",
+            r64(pk)
+        );
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config(512))]
+
+    #[test]
+    fn chi2_roundtrip_f64(p in 1e-12..(1.0 - 1e-12f64), k in 1e-4..6.0f64) {
+        prop_chi2_roundtrip::<f64>(p, k)?;
+    }
+
+    #[test]
+    fn chi2_roundtrip_f32(p in 1e-6..0.9999f64, k in 1e-3..4.0f64) {
+        prop_chi2_roundtrip::<f32>(p, k)?;
+    }
+}
+
+#[test]
+fn chi2_edges() {
+    fn check<T: Real>() {
+        assert_eq!(chi2_3_probability(T::ZERO), T::ZERO);
+        assert_eq!(chi2_3_probability(-T::ONE), T::ZERO);
+        assert_eq!(chi2_3_probability(T::infinity()), T::ONE);
+        assert!(chi2_3_probability(T::nan()).is_nan());
+        assert_eq!(chi2_3_radius(T::ONE), None);
+        assert_eq!(chi2_3_radius(T::nan()), None);
+        assert_eq!(chi2_3_radius(-T::EPS), None);
+        assert_eq!(chi2_3_radius(T::ZERO), Some(T::ZERO));
+        // 1σ / 2σ / 3σ in 3D and the 95 % radius (k² = χ²₃(0.95) = 7.814727903251178).
+        let k95 = r64(chi2_3_radius(T::lit(0.95)).unwrap());
+        assert!((k95 * k95 - 7.814_727_903_251_18).abs() <= 16.0 * eps::<T>() * 7.8);
+        for (k, p) in [
+            (1.0, 0.198_748_043_098_799_2),
+            (2.0, 0.738_535_870_050_889_4),
+            (3.0, 0.970_709_113_465_111_8),
+        ] {
+            assert!((r64(chi2_3_probability(T::lit(k))) - p).abs() <= 2.0 * eps::<T>());
+            assert!((r64(chi2_3_radius(T::lit(p)).unwrap()) - k).abs() <= 8.0 * eps::<T>() * k);
+        }
+        // Monotone.
+        let mut last = T::ZERO;
+        for i in 0..=400 {
+            let p = chi2_3_probability(T::from_usize(i) * T::lit(0.025));
+            assert!(p >= last);
+            last = p;
+        }
+    }
+    check::<f32>();
+    check::<f64>();
+}
+
+// ---------------------------------------------------------------------------------------
+// Monte Carlo: small noise, marginal ellipsoid coverage; moderate noise, second-order mean.
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, StandardNormal};
+
+/// A synthetic full covariance with strong rotation-translation correlation:
+/// `Σ = L·Lᵀ`, L lower triangular with the given rotational / translational scales.
+fn synthetic_cov(sr: f64, st: f64) -> [[f64; 6]; 6] {
+    let l: [[f64; 6]; 6] = [
+        [1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [0.3, 0.8, 0.0, 0.0, 0.0, 0.0],
+        [-0.2, 0.4, 0.6, 0.0, 0.0, 0.0],
+        [0.5, -0.3, 0.2, 0.9, 0.0, 0.0],
+        [0.1, 0.6, -0.4, 0.2, 0.7, 0.0],
+        [-0.4, 0.2, 0.5, -0.1, 0.3, 0.5],
+    ];
+    let s = |i: usize| if i < 3 { sr } else { st };
+    core::array::from_fn(|i| {
+        core::array::from_fn(|j| (0..6).map(|k| l[i][k] * l[j][k]).sum::<f64>() * s(i) * s(j))
+    })
+}
+
+/// A covariance whose translation noise is coupled to the rotation noise through a
+/// cross product: ω ~ N(0, σ_ω²·I), `v = c·(ẑ × ω) + n`, n ~ N(0, σ_n²·I). Then
+/// `E[ω×v] = c·E[ω×(ẑ×ω)] = 2·c·σ_ω²·ẑ`, so the second-order mean moves by `c·σ_ω²`
+/// along R̄·ẑ.
+fn coupled_cov(sw: f64, c: f64, sn: f64) -> [[f64; 6]; 6] {
+    let mut l = [[0.0_f64; 6]; 6];
+    for i in 0..3 {
+        l[i][i] = sw;
+        l[i + 3][i + 3] = sn;
+    }
+    // ẑ × ω = (−ω_y, ω_x, 0).
+    l[3][1] = -c * sw;
+    l[4][0] = c * sw;
+    core::array::from_fn(|i| {
+        core::array::from_fn(|j| (0..6).map(|k| l[i][k] * l[j][k]).sum::<f64>())
+    })
+}
+
+/// Samples tool positions of `T̄·Exp(η)`, η ~ N(0, Σ) (Cholesky in f64, the library's
+/// exp in T).
+fn sample_positions<T: Real>(
+    mean: &Transform<T>,
+    cov: &[[f64; 6]; 6],
+    n: usize,
+    seed: u64,
+) -> Vec<[f64; 3]> {
+    let l = Matrix(*cov).cholesky().expect("SPD");
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    (0..n)
+        .map(|_| {
+            let z: Vector<f64, 6> =
+                Vector(core::array::from_fn(|_| StandardNormal.sample(&mut rng)));
+            let eta = l * z;
+            let p = (*mean * se3::exp(&Vector(eta.0.map(T::lit)))).translation;
+            p.0.map(r64)
+        })
+        .collect()
+}
+
+fn coverage_check<T: Real>() {
+    let mean = se3::exp(&Vec6::from([0.4, -0.9, 1.3, 0.5, 0.2, -0.7].map(T::lit)));
+    let cov64 = synthetic_cov(1e-3, 1e-3);
+    let cov: Mat6<T> = to_t(&cov64);
+    let samples = sample_positions(&mean, &cov64, 100_000, 0x5eed_e111);
+    // Mahalanobis distance with respect to the marginal R̄·Σ_vv·R̄ᵀ at t̄ (in f64).
+    let sp = position_covariance(&mean, &cov);
+    let sp64: Mat3<f64> = Matrix(sp.0.map(|r| r.map(r64)));
+    let info = sp64.inverse_spd().expect("SPD");
+    let t = mean.translation.0.map(r64);
+    let d2: Vec<f64> = samples
+        .iter()
+        .map(|p| {
+            let d = Vector([p[0] - t[0], p[1] - t[1], p[2] - t[2]]);
+            d.dot(&(info * d))
+        })
+        .collect();
+    for p in [0.2, 0.74, 0.97] {
+        let k = r64(chi2_3_radius(T::lit(p)).unwrap());
+        let inside = d2.iter().filter(|&&x| x <= k * k).count() as f64 / d2.len() as f64;
+        assert!((inside - p).abs() <= 0.01, "p {p}: k {k} holds {inside}");
+        eprintln!(
+            "{}: p {p} k {k:.4} inside {inside:.4}",
+            core::any::type_name::<T>()
+        );
+    }
+}
+
+#[test]
+fn monte_carlo_marginal_coverage_f64() {
+    coverage_check::<f64>();
+}
+
+#[test]
+fn monte_carlo_marginal_coverage_f32() {
+    coverage_check::<f32>();
+}
+
+/// At moderate noise (σ_ω = 0.2 rad, translation coupled to rotation through a cross
+/// product) the sampled mean of the tool position moves away from t̄ by c·σ_ω² = 0.04 m;
+/// `t̄ + ½·R̄·E[ω×v]` predicts it up to the fourth-order terms (≈ σ_ω⁴·c, a few mm) and
+/// the sampling error.
+#[test]
+fn monte_carlo_second_order_mean() {
+    let mean = se3::exp(&Vec6::from([0.4, -0.9, 1.3, 0.5, 0.2, -0.7]));
+    let cov64 = coupled_cov(0.2, 1.0, 0.1);
+    let cov: Mat6<f64> = Matrix(cov64);
+    let expected = mean.translation + mean.rotation * Vec3::new(0.0, 0.0, 0.04);
+    assert!((position_mean_second_order(&mean, &cov) - expected).norm() < 1e-15);
+    let n = 100_000;
+    let samples = sample_positions(&mean, &cov64, n, 0xa11ce);
+    let mut m = [0.0_f64; 3];
+    for p in &samples {
+        for i in 0..3 {
+            m[i] += p[i] / n as f64;
+        }
+    }
+    let sampled = Vec3::from(m);
+    let predicted = position_mean_second_order(&mean, &cov);
+    let shift = (sampled - mean.translation).norm();
+    let miss = (sampled - predicted).norm();
+    // Standard error of the sampled mean: √(tr Σ_p / n).
+    let se = (position_covariance(&mean, &cov).trace() / n as f64).sqrt();
+    eprintln!("second-order mean: shift {shift:.4} m, miss {miss:.5} m, standard error {se:.5} m");
+    assert!(shift > 20.0 * se, "shift {shift} not significant");
+    assert!(
+        miss < 0.1 * shift && miss < 5.0 * se + 0.02 * shift,
+        "miss {miss} (shift {shift}, se {se})"
+    );
+}
