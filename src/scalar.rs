@@ -128,11 +128,50 @@ impl Real for f32 {
     fn from_usize(n: usize) -> f32 {
         n as f32
     }
+
+    /// f32-native sine and cosine (libm's `sinf`/`cosf` compute in f64, which costs
+    /// ≈2,500 instructions per call on an M4F that emulates f64 in software).
+    ///
+    /// Method: Cody–Waite reduction by π/2 with a three-part constant (exact products for
+    /// |k| < 2¹⁵), then the Cephes minimax polynomials for sin and cos on [−π/4, π/4]
+    /// (Moshier, *Methods and Programs for Mathematical Functions*, 1989), all in f32.
+    /// Accuracy (tested against f64 over |x| ≤ 10⁴): absolute error ≤ 10⁻⁷ (measured
+    /// 7.6·10⁻⁸, 0.64 ulp of 1). Beyond |x| = 10⁴ it falls back to libm.
+    #[inline]
+    fn sin_cos_r(self) -> (f32, f32) {
+        sin_cos_f32(self)
+    }
+}
+
+/// See [`Real::sin_cos_r`] for `f32`.
+#[inline]
+fn sin_cos_f32(x: f32) -> (f32, f32) {
+    if !(x.abs() <= 1.0e4) {
+        return (libm::sinf(x), libm::cosf(x));
+    }
+    // π/2 = P1 + P2 + P3, P1 and P2 with few significant bits so k·P1, k·P2 are exact.
+    const P1: f32 = 1.570_312_5;
+    const P2: f32 = 4.837_513e-4;
+    const P3: f32 = 7.549_79e-8;
+    let k = libm::rintf(x * core::f32::consts::FRAC_2_PI);
+    let r = ((x - k * P1) - k * P2) - k * P3;
+    let z = r * r;
+    let s = ((-1.951_529_6e-4 * z + 8.332_161e-3) * z - 1.666_665_5e-1) * z * r + r;
+    let c = ((2.443_315_7e-5 * z - 1.388_731_6e-3) * z + 4.166_664_6e-2) * z * z - 0.5 * z + 1.0;
+    // k is an integer-valued float with |k| ≤ 6367, so the cast is exact.
+    match (k as i32) & 3 {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    }
 }
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use super::Real;
+    use std::println;
 
     fn check_derivations<T: Real>() {
         let eps = T::EPS.to_f64();
@@ -144,6 +183,32 @@ mod tests {
         assert!(near_pi <= 2.0 * eps.cbrt() && near_pi >= eps.cbrt() / 10.0);
         let tol = T::TOL.to_f64();
         assert!((tol - eps.sqrt()).abs() / eps.sqrt() < 1e-6);
+    }
+
+    #[test]
+    fn f32_sin_cos_accuracy() {
+        // Every f32 in [-4π, 4π] at a fine stride, plus a coarse sweep to 1e4 and beyond.
+        let mut worst = 0.0f64;
+        let mut check = |x: f32| {
+            let (s, c) = super::sin_cos_f32(x);
+            let xd = x as f64;
+            worst = worst.max((s as f64 - xd.sin()).abs()).max((c as f64 - xd.cos()).abs());
+        };
+        let mut x = -4.0 * core::f32::consts::PI;
+        while x < 4.0 * core::f32::consts::PI {
+            check(x);
+            x += 1.0e-4;
+        }
+        for i in -1_000_000..=1_000_000 {
+            check(i as f32 * 1.0e-2);
+        }
+        for x in [1.0e4f32, -1.0e4, 1.0e4 + 1.0, 3.0e7, f32::MIN_POSITIVE, 1e-30, 0.0, -0.0] {
+            check(x);
+        }
+        println!("f32 sin_cos worst abs error {worst:e}");
+        assert!(worst <= 1.0e-7, "worst abs error {worst:e}");
+        assert!(super::sin_cos_f32(f32::NAN).0.is_nan());
+        assert!(super::sin_cos_f32(f32::INFINITY).1.is_nan());
     }
 
     #[test]
