@@ -1,0 +1,366 @@
+//! Chain extraction: from a base link to a tip link through the URDF tree, the screw axes of
+//! the moving joints in the base frame at the home pose, the home pose M of the tip, and the
+//! limits — computed as pytransform3d's probabilistic-kinematics example does
+//! (MATH.md §4, §5.1).
+
+use crate::error::{Error, ErrorKind, Result};
+use crate::math::{self, Mat4, IDENTITY};
+use crate::urdf::{Joint as UrdfJoint, JointType, Urdf};
+use ppoe::chain::{Joint, JointKind};
+use ppoe::se3::Transform;
+use std::collections::HashMap;
+
+/// One moving joint of a [`RobotChain`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChainJoint {
+    /// The joint's name in the URDF.
+    pub name: String,
+    /// Revolute, continuous or prismatic.
+    pub kind: JointKind,
+    /// The screw axis S = (ω, v) in the base frame at the home pose, rotation first:
+    /// `(ŝ, q × ŝ)` for revolute and continuous joints, `(0, ŝ)` for prismatic ones.
+    pub screw: [f64; 6],
+    /// The lower limit as written in the URDF (−∞ if absent). Continuous joints keep the
+    /// limits the file gives them; whether to clip them is the core's decision.
+    pub lower: f64,
+    /// The upper limit as written in the URDF (+∞ if absent).
+    pub upper: f64,
+}
+
+/// A serial chain extracted from a URDF, host side (owned strings, any number of joints).
+/// The generated `const` tables hold exactly these values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RobotChain {
+    /// The `<robot name>`.
+    pub robot: String,
+    /// The base link.
+    pub base: String,
+    /// The tip link.
+    pub tip: String,
+    /// The moving joints, base to tip.
+    pub joints: Vec<ChainJoint>,
+    /// The home pose M (tip to base at θ = 0), row-major 4×4.
+    pub home: [[f64; 4]; 4],
+}
+
+impl RobotChain {
+    /// The joints as the core's [`ppoe::chain::Joint`]s.
+    ///
+    /// `Joint` holds its name as `&'static str`, so that generated chains can be `const`
+    /// items with no allocation. To build one at run time, each name is copied into a
+    /// leaked `Box<str>`: a few bytes per joint and call, never freed. That is meant for
+    /// build scripts, command-line tools and tests that build a handful of chains; do not
+    /// call it in a loop.
+    pub fn to_core_joints(&self) -> Vec<Joint<f64>> {
+        self.joints
+            .iter()
+            .map(|j| {
+                let name: &'static str = Box::leak(j.name.clone().into_boxed_str());
+                Joint::new(name, j.kind, j.screw, j.lower, j.upper)
+            })
+            .collect()
+    }
+
+    /// The home pose M as the core's [`Transform`].
+    pub fn home_transform(&self) -> Transform<f64> {
+        Transform::from_matrix4(&self.home)
+    }
+
+    /// The chain as the core's [`ppoe::chain::Chain`] with `N` joints, the same values a
+    /// generated `const` holds. Leaks the link and joint names like
+    /// [`RobotChain::to_core_joints`]. Error ([`ErrorKind::Config`]) if the chain does not
+    /// have exactly `N` joints.
+    pub fn to_core_chain<const N: usize>(&self) -> Result<ppoe::chain::Chain<f64, N>> {
+        let joints: [Joint<f64>; N] = self.to_core_joints().try_into().map_err(|v: Vec<_>| {
+            Error::new(
+                ErrorKind::Config,
+                format!("the chain has {} joints, not {N}", v.len()),
+            )
+        })?;
+        let base: &'static str = Box::leak(self.base.clone().into_boxed_str());
+        let tip: &'static str = Box::leak(self.tip.clone().into_boxed_str());
+        Ok(ppoe::chain::Chain::new(
+            base,
+            tip,
+            joints,
+            self.home_transform(),
+        ))
+    }
+
+    /// The names of the moving joints, base to tip.
+    pub fn joint_names(&self) -> Vec<&str> {
+        self.joints.iter().map(|j| j.name.as_str()).collect()
+    }
+}
+
+impl Urdf {
+    /// Extracts the chain from `base` to `tip`.
+    ///
+    /// `joints`: `None` takes every moving joint on the path, base to tip. An explicit list
+    /// must name joints on the path, moving, each once, in path order (base to tip). Moving
+    /// joints on the path that are left out are frozen at their home position (0): they
+    /// only contribute their fixed `<origin>` transform, like fixed joints.
+    ///
+    /// Fixed joints on the path (before, between and after the moving ones) are folded into
+    /// the screw axes and the home pose.
+    pub fn chain<S: AsRef<str>>(
+        &self,
+        base: &str,
+        tip: &str,
+        joints: Option<&[S]>,
+    ) -> Result<RobotChain> {
+        let link_pos = |name: &str| self.link(name).and_then(|l| l.position);
+        for (what, name) in [("base", base), ("tip", tip)] {
+            if self.link(name).is_none() {
+                return Err(Error::new(
+                    ErrorKind::UnknownLink,
+                    format!(
+                        "{what} link '{name}' does not exist in robot '{}'",
+                        self.name
+                    ),
+                ));
+            }
+        }
+        if base == tip {
+            return Err(Error::new(
+                ErrorKind::TipNotBelowBase,
+                format!("the tip link '{tip}' is the base link itself: the chain is empty"),
+            )
+            .at(link_pos(tip)));
+        }
+
+        // Walk up from the tip. The tree was checked at parse time (one parent per link, no
+        // cycle), so the walk ends; the step bound makes that certain anyway.
+        let parent_joint: HashMap<&str, &UrdfJoint> =
+            self.joints.iter().map(|j| (j.child.as_str(), j)).collect();
+        let mut path: Vec<&UrdfJoint> = Vec::new();
+        let mut cur = tip;
+        while cur != base {
+            match parent_joint.get(cur) {
+                Some(j) if path.len() <= self.joints.len() => {
+                    path.push(j);
+                    cur = j.parent.as_str();
+                }
+                _ => {
+                    return Err(Error::new(
+                        ErrorKind::TipNotBelowBase,
+                        format!(
+                            "the tip link '{tip}' is not below the base link '{base}': going \
+                             up from '{tip}' reaches the root link '{cur}' without passing \
+                             '{base}'"
+                        ),
+                    )
+                    .at(link_pos(tip)));
+                }
+            }
+        }
+        path.reverse(); // base to tip
+
+        for j in &path {
+            if matches!(j.joint_type, JointType::Planar | JointType::Floating) {
+                return Err(Error::new(
+                    ErrorKind::UnsupportedJointType,
+                    format!(
+                        "joint '{}' on the path from '{base}' to '{tip}' is {}; only revolute, \
+                         continuous, prismatic and fixed joints can form a chain",
+                        j.name,
+                        j.joint_type.as_str()
+                    ),
+                )
+                .at(j.position));
+            }
+            if j.mimic && j.joint_type.is_moving() {
+                return Err(Error::new(
+                    ErrorKind::Mimic,
+                    format!(
+                        "joint '{}' on the path from '{base}' to '{tip}' is a mimic joint; \
+                         mimic joints are not supported (its value would follow another \
+                         joint's): make it an independent joint or end the chain before it",
+                        j.name
+                    ),
+                )
+                .at(j.mimic_position.or(j.position)));
+            }
+        }
+
+        // Indices (into `path`) of the moving joints of the chain.
+        let selected: Vec<usize> = match joints {
+            None => {
+                let moving: Vec<usize> = (0..path.len())
+                    .filter(|&i| path[i].joint_type.is_moving())
+                    .collect();
+                if moving.is_empty() {
+                    return Err(Error::new(
+                        ErrorKind::NotMovable,
+                        format!(
+                            "the path from '{base}' to '{tip}' has no moving joint (only fixed \
+                             joints: {})",
+                            names(&path)
+                        ),
+                    )
+                    .at(link_pos(tip)));
+                }
+                moving
+            }
+            Some(list) => self.select(list, &path, base, tip)?,
+        };
+
+        // T_base←child for every joint on the path, as pytransform3d's get_transform: the
+        // direct edge for a child of the base, otherwise I, then T ← C_k·T from the link up.
+        let link2base = |i: usize| -> Mat4 {
+            if i == 0 {
+                return path[0].child2parent;
+            }
+            let mut t = IDENTITY;
+            for j in path[..=i].iter().rev() {
+                t = math::mul4(&j.child2parent, &t);
+            }
+            t
+        };
+
+        let mut out = Vec::with_capacity(selected.len());
+        for &i in &selected {
+            let j = path[i];
+            let l = link2base(i);
+            let s = math::rotate(&l, j.axis);
+            let n = math::norm(s);
+            if n == 0.0 {
+                return Err(Error::new(
+                    ErrorKind::ZeroAxis,
+                    format!(
+                        "joint '{}' ({}): the axis is (0, 0, 0); a moving joint needs a \
+                         direction",
+                        j.name,
+                        j.joint_type.as_str()
+                    ),
+                )
+                .at(j.axis_position.or(j.position)));
+            }
+            let s = [s[0] / n, s[1] / n, s[2] / n];
+            let (kind, screw) = match j.joint_type {
+                JointType::Prismatic => (JointKind::Prismatic, [0.0, 0.0, 0.0, s[0], s[1], s[2]]),
+                t => {
+                    let q = [l[0][3], l[1][3], l[2][3]];
+                    let c = math::cross(q, s);
+                    // pytransform3d adds h·ŝ with h = 0.0 (this only affects signed zeros).
+                    let v = [c[0] + 0.0 * s[0], c[1] + 0.0 * s[1], c[2] + 0.0 * s[2]];
+                    let kind = if t == JointType::Continuous {
+                        JointKind::Continuous
+                    } else {
+                        JointKind::Revolute
+                    };
+                    (kind, [s[0], s[1], s[2], v[0], v[1], v[2]])
+                }
+            };
+            if screw.iter().any(|x| !x.is_finite()) {
+                return Err(Error::new(
+                    ErrorKind::NonFinite,
+                    format!(
+                        "joint '{}': the screw axis {screw:?} is not finite (the origins \
+                         along the path overflow)",
+                        j.name
+                    ),
+                )
+                .at(j.position));
+            }
+            out.push(ChainJoint {
+                name: j.name.clone(),
+                kind,
+                screw,
+                lower: j.lower,
+                upper: j.upper,
+            });
+        }
+
+        let home = link2base(path.len() - 1);
+        if home.iter().flatten().any(|x| !x.is_finite()) {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                format!("the home pose of '{tip}' in '{base}' is not finite (the origins along the path overflow)"),
+            )
+            .at(link_pos(tip)));
+        }
+
+        Ok(RobotChain {
+            robot: self.name.clone(),
+            base: base.to_string(),
+            tip: tip.to_string(),
+            joints: out,
+            home,
+        })
+    }
+
+    /// Checks an explicit joint list against the path; returns indices into `path`.
+    fn select<S: AsRef<str>>(
+        &self,
+        list: &[S],
+        path: &[&UrdfJoint],
+        base: &str,
+        tip: &str,
+    ) -> Result<Vec<usize>> {
+        let mut out: Vec<usize> = Vec::with_capacity(list.len());
+        for (k, name) in list.iter().enumerate() {
+            let name = name.as_ref();
+            let Some(joint) = self.joint(name) else {
+                return Err(Error::new(
+                    ErrorKind::UnknownJoint,
+                    format!(
+                        "joint '{name}' (listed) does not exist in robot '{}'",
+                        self.name
+                    ),
+                ));
+            };
+            if list[..k].iter().any(|n| n.as_ref() == name) {
+                return Err(Error::new(
+                    ErrorKind::DuplicateName,
+                    format!("joint '{name}' is listed twice"),
+                ));
+            }
+            let Some(i) = path.iter().position(|j| j.name == name) else {
+                return Err(Error::new(
+                    ErrorKind::NotOnPath,
+                    format!(
+                        "joint '{name}' (listed) is not on the path from '{base}' to '{tip}' \
+                         (the path: {})",
+                        names(path)
+                    ),
+                )
+                .at(joint.position));
+            };
+            if !joint.joint_type.is_moving() {
+                return Err(Error::new(
+                    ErrorKind::NotMovable,
+                    format!(
+                        "joint '{name}' is {}, it cannot be listed as a moving joint",
+                        joint.joint_type.as_str()
+                    ),
+                )
+                .at(joint.position));
+            }
+            if let Some(&prev) = out.last() {
+                if i < prev {
+                    return Err(Error::new(
+                        ErrorKind::NotOnPath,
+                        format!(
+                            "joint '{name}' is listed after '{}' but comes before it on the \
+                             path from '{base}' to '{tip}': list the joints in path order, \
+                             base to tip (the path: {})",
+                            path[prev].name,
+                            names(path)
+                        ),
+                    )
+                    .at(joint.position));
+                }
+            }
+            out.push(i);
+        }
+        Ok(out)
+    }
+}
+
+fn names(path: &[&UrdfJoint]) -> String {
+    path.iter()
+        .map(|j| format!("{} ({})", j.name, j.joint_type.as_str()))
+        .collect::<Vec<_>>()
+        .join(", ")
+}

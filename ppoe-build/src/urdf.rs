@@ -1,0 +1,581 @@
+//! URDF parsing: the links and joints of a `<robot>`, with each joint's child-to-parent
+//! transform, axis and limits computed as pytransform3d's `UrdfTransformManager` does.
+//!
+//! What is read (everything else — `<visual>`, `<collision>`, `<inertial>`, `<material>`,
+//! `<transmission>`, `<gazebo>`, `<dynamics>`, `<safety_controller>`, comments, processing
+//! instructions — is ignored):
+//!
+//! * the root element must be `<robot name="…">`;
+//! * its direct `<link name>` children, then its direct `<joint name type>` children with
+//!   their first `<parent link>`, `<child link>`, `<origin xyz rpy>`, `<axis xyz>`,
+//!   `<limit lower upper>` and `<mimic>` children.
+//!
+//! Element names are matched on their local name, so XML namespaces are ignored (prefixes
+//! must still be declared: roxmltree, like any conforming parser, rejects undeclared ones).
+//! Attributes are looked up without a namespace.
+//!
+//! Lenient where pytransform3d is lenient:
+//! * `<origin>` may be absent, and so may either of its attributes (zero);
+//! * `<axis>` may be absent (axis (1, 0, 0)) and need not be a unit vector (normalised by
+//!   division by its norm);
+//! * `<limit>` may be absent, and so may `lower` (−∞) or `upper` (+∞) — also on continuous
+//!   joints; fixed joints get (0, 0);
+//! * numbers in `xyz`/`rpy` may be separated by any ASCII whitespace (spaces, tabs,
+//!   newlines, also as character references), with leading and trailing whitespace; a limit
+//!   may have surrounding whitespace.
+//!
+//! Strict elsewhere: exactly three numbers per vector; NaN or ±∞ in `xyz`, `rpy` or an axis;
+//! NaN in a limit (±∞ is accepted there: it is what a missing limit means); duplicate link or
+//! joint names; a joint whose parent or child link does not exist; unknown joint types; a
+//! link with two parents; a cycle. `planar` and `floating` joints are accepted here and
+//! rejected only if they lie on a chain that is extracted (pytransform3d rejects them
+//! anywhere). Lower > upper is kept as written (pytransform3d does not check it either).
+
+use crate::error::{Error, ErrorKind, Position, Result};
+use crate::math;
+use roxmltree::{Attribute, Document, Node};
+use std::collections::HashMap;
+
+/// A joint type as written in the URDF.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum JointType {
+    /// `revolute`: rotation with limits.
+    Revolute,
+    /// `continuous`: rotation without limits (limits may still be given).
+    Continuous,
+    /// `prismatic`: translation.
+    Prismatic,
+    /// `fixed`: no motion; folded into the neighbouring transforms.
+    Fixed,
+    /// `planar`: not supported on a chain.
+    Planar,
+    /// `floating`: not supported on a chain.
+    Floating,
+}
+
+impl JointType {
+    /// The URDF spelling.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            JointType::Revolute => "revolute",
+            JointType::Continuous => "continuous",
+            JointType::Prismatic => "prismatic",
+            JointType::Fixed => "fixed",
+            JointType::Planar => "planar",
+            JointType::Floating => "floating",
+        }
+    }
+
+    /// `true` for revolute, continuous and prismatic joints.
+    pub fn is_moving(self) -> bool {
+        matches!(
+            self,
+            JointType::Revolute | JointType::Continuous | JointType::Prismatic
+        )
+    }
+}
+
+/// A `<link>`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Link {
+    /// The link's name.
+    pub name: String,
+    /// Where the `<link>` element starts.
+    pub position: Option<Position>,
+}
+
+/// A `<joint>` with its home-pose data.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Joint {
+    /// The joint's name.
+    pub name: String,
+    /// Its type.
+    pub joint_type: JointType,
+    /// The parent link.
+    pub parent: String,
+    /// The child link.
+    pub child: String,
+    /// The child-to-parent transform `[[Rz(y)·Ry(p)·Rx(r), xyz], [0, 1]]` of `<origin>`
+    /// (row-major 4×4).
+    pub child2parent: [[f64; 4]; 4],
+    /// The axis in the child frame, normalised (`(1, 0, 0)` if absent; a zero axis stays
+    /// zero and is rejected when the joint is used as a moving joint of a chain).
+    pub axis: [f64; 3],
+    /// Lower limit: `lower` of `<limit>`, −∞ if absent; 0 for fixed joints.
+    pub lower: f64,
+    /// Upper limit: `upper` of `<limit>`, +∞ if absent; 0 for fixed joints.
+    pub upper: f64,
+    /// `true` if the joint has a `<mimic>` element.
+    pub mimic: bool,
+    /// Where the `<joint>` element starts.
+    pub position: Option<Position>,
+    /// Where the `xyz` value of `<axis>` starts (if given).
+    pub axis_position: Option<Position>,
+    /// Where the `link` value of `<child>` starts.
+    pub child_position: Option<Position>,
+    /// Where the `<mimic>` element starts (if any).
+    pub mimic_position: Option<Position>,
+}
+
+/// A parsed URDF: the robot's links and joints in document order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Urdf {
+    /// The robot's name.
+    pub name: String,
+    /// The links in document order.
+    pub links: Vec<Link>,
+    /// The joints in document order.
+    pub joints: Vec<Joint>,
+}
+
+impl Urdf {
+    /// Parses URDF text. Never panics; every problem is an [`Error`].
+    pub fn parse(text: &str) -> Result<Self> {
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let options = roxmltree::ParsingOptions {
+            allow_dtd: true,
+            ..roxmltree::ParsingOptions::default()
+        };
+        let doc = Document::parse_with_options(text, options).map_err(|e| {
+            let position = match e {
+                // roxmltree reports these at 1:1; the problem is at the end of the input.
+                roxmltree::Error::UnexpectedEndOfStream | roxmltree::Error::UnclosedRootNode => {
+                    end_position(text)
+                }
+                _ => Position {
+                    line: e.pos().row,
+                    column: e.pos().col,
+                },
+            };
+            Error::new(ErrorKind::Xml, format!("malformed XML: {e}")).at(Some(position))
+        })?;
+        Parser { doc: &doc }.robot()
+    }
+
+    /// Parses URDF bytes (must be UTF-8, with or without a byte-order mark).
+    pub fn parse_bytes(bytes: &[u8]) -> Result<Self> {
+        match std::str::from_utf8(bytes) {
+            Ok(text) => Self::parse(text),
+            Err(e) => {
+                // The prefix is valid UTF-8 by construction.
+                let prefix = std::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or("");
+                let position = end_position(prefix);
+                Err(Error::new(
+                    ErrorKind::Xml,
+                    format!(
+                        "malformed XML: the file is not UTF-8 (invalid byte at offset {})",
+                        e.valid_up_to()
+                    ),
+                )
+                .at(Some(position)))
+            }
+        }
+    }
+
+    /// The link named `name`.
+    pub fn link(&self, name: &str) -> Option<&Link> {
+        self.links.iter().find(|l| l.name == name)
+    }
+
+    /// The joint named `name`.
+    pub fn joint(&self, name: &str) -> Option<&Joint> {
+        self.joints.iter().find(|j| j.name == name)
+    }
+}
+
+/// The position just after the last character of `text`.
+fn end_position(text: &str) -> Position {
+    let line = text.matches('\n').count() + 1;
+    let column = text.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    Position {
+        line: u32::try_from(line).unwrap_or(u32::MAX),
+        column: u32::try_from(column).unwrap_or(u32::MAX),
+    }
+}
+
+struct Parser<'a, 'input> {
+    doc: &'a Document<'input>,
+}
+
+/// Shortens an attribute value for a message.
+fn shown(value: &str) -> String {
+    const MAX: usize = 60;
+    if value.chars().count() <= MAX {
+        format!("{value:?}")
+    } else {
+        let head: String = value.chars().take(MAX).collect();
+        format!("{head:?}…")
+    }
+}
+
+fn attribute<'a, 'input>(node: Node<'a, 'input>, name: &str) -> Option<Attribute<'a, 'input>> {
+    node.attributes()
+        .find(|a| a.namespace().is_none() && a.name() == name)
+}
+
+fn first_child<'a, 'input>(node: Node<'a, 'input>, name: &str) -> Option<Node<'a, 'input>> {
+    node.children()
+        .find(|c| c.is_element() && c.tag_name().name() == name)
+}
+
+impl<'input> Parser<'_, 'input> {
+    fn pos(&self, offset: usize) -> Option<Position> {
+        let p = self.doc.text_pos_at(offset);
+        Some(Position {
+            line: p.row,
+            column: p.col,
+        })
+    }
+
+    fn node_pos(&self, node: Node<'_, 'input>) -> Option<Position> {
+        self.pos(node.range().start)
+    }
+
+    fn value_pos(&self, attr: &Attribute<'_, 'input>) -> Option<Position> {
+        self.pos(attr.range_value().start)
+    }
+
+    /// A required, non-empty attribute.
+    fn required(&self, node: Node<'_, 'input>, name: &str, what: &str) -> Result<String> {
+        match attribute(node, name) {
+            Some(a) if !a.value().is_empty() => Ok(a.value().to_string()),
+            Some(a) => Err(Error::new(
+                ErrorKind::MissingAttribute,
+                format!("{what}: attribute '{name}' is empty"),
+            )
+            .at(self.value_pos(&a))),
+            None => Err(Error::new(
+                ErrorKind::MissingAttribute,
+                format!(
+                    "{what}: <{}> has no attribute '{name}'",
+                    node.tag_name().name()
+                ),
+            )
+            .at(self.node_pos(node))),
+        }
+    }
+
+    fn robot(&self) -> Result<Urdf> {
+        let root = self.doc.root_element();
+        if root.tag_name().name() != "robot" {
+            return Err(Error::new(
+                ErrorKind::NotARobot,
+                format!(
+                    "the root element is <{}>, not <robot>: not a URDF file",
+                    root.tag_name().name()
+                ),
+            )
+            .at(self.node_pos(root)));
+        }
+        let name = self.required(root, "name", "<robot>")?;
+
+        let mut links: Vec<Link> = Vec::new();
+        let mut link_index: HashMap<String, usize> = HashMap::new();
+        for node in root
+            .children()
+            .filter(|c| c.is_element() && c.tag_name().name() == "link")
+        {
+            let link_name = self.required(node, "name", "<link>")?;
+            let position = self.node_pos(node);
+            if let Some(&first) = link_index.get(&link_name) {
+                let at = links[first]
+                    .position
+                    .map_or(String::new(), |p| format!(" at {p}"));
+                return Err(Error::new(
+                    ErrorKind::DuplicateName,
+                    format!("link '{link_name}' is defined twice (first{at})"),
+                )
+                .at(position));
+            }
+            link_index.insert(link_name.clone(), links.len());
+            links.push(Link {
+                name: link_name,
+                position,
+            });
+        }
+
+        let mut joints: Vec<Joint> = Vec::new();
+        let mut joint_index: HashMap<String, usize> = HashMap::new();
+        for node in root
+            .children()
+            .filter(|c| c.is_element() && c.tag_name().name() == "joint")
+        {
+            let joint = self.joint(node, &link_index)?;
+            if let Some(&first) = joint_index.get(&joint.name) {
+                let at = joints[first]
+                    .position
+                    .map_or(String::new(), |p| format!(" at {p}"));
+                return Err(Error::new(
+                    ErrorKind::DuplicateName,
+                    format!("joint '{}' is defined twice (first{at})", joint.name),
+                )
+                .at(joint.position));
+            }
+            joint_index.insert(joint.name.clone(), joints.len());
+            joints.push(joint);
+        }
+
+        check_tree(&links, &joints)?;
+        Ok(Urdf {
+            name,
+            links,
+            joints,
+        })
+    }
+
+    fn joint(&self, node: Node<'_, 'input>, links: &HashMap<String, usize>) -> Result<Joint> {
+        let position = self.node_pos(node);
+        let name = self.required(node, "name", "<joint>")?;
+        let what = format!("joint '{name}'");
+        let type_str = self.required(node, "type", &what)?;
+        let joint_type = match type_str.as_str() {
+            "revolute" => JointType::Revolute,
+            "continuous" => JointType::Continuous,
+            "prismatic" => JointType::Prismatic,
+            "fixed" => JointType::Fixed,
+            "planar" => JointType::Planar,
+            "floating" => JointType::Floating,
+            other => {
+                let attr = attribute(node, "type");
+                return Err(Error::new(
+                    ErrorKind::UnsupportedJointType,
+                    format!(
+                        "{what}: type {} is not a URDF joint type (revolute, continuous, \
+                         prismatic, fixed, planar, floating)",
+                        shown(other)
+                    ),
+                )
+                .at(attr.and_then(|a| self.value_pos(&a)).or(position)));
+            }
+        };
+
+        let (parent, _) = self.link_ref(node, "parent", &what, links)?;
+        let (child, child_position) = self.link_ref(node, "child", &what, links)?;
+
+        let (xyz, rpy) = match first_child(node, "origin") {
+            Some(origin) => (
+                self.vec3(origin, "xyz", &what)?.unwrap_or([0.0; 3]),
+                self.vec3(origin, "rpy", &what)?,
+            ),
+            None => ([0.0; 3], None),
+        };
+        // As pytransform3d: the Euler product is evaluated whenever `rpy` is given (even
+        // "0 0 0", which only affects the sign of zeros), the identity otherwise.
+        let rotation = match rpy {
+            Some(rpy) => math::rotation_from_rpy(rpy),
+            None => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        };
+        let child2parent = math::transform_from(&rotation, xyz);
+
+        // pytransform3d reads the axis of moving joints only; a fixed joint's axis is ignored
+        // (it may even be zero).
+        let mut axis = [1.0, 0.0, 0.0];
+        let mut axis_position = None;
+        if joint_type != JointType::Fixed {
+            if let Some(axis_node) = first_child(node, "axis") {
+                if let Some(v) = self.vec3(axis_node, "xyz", &what)? {
+                    axis = math::normalized(v);
+                    axis_position = attribute(axis_node, "xyz").and_then(|a| self.value_pos(&a));
+                }
+            }
+        }
+
+        let (mut lower, mut upper) = (f64::NEG_INFINITY, f64::INFINITY);
+        if joint_type == JointType::Fixed {
+            (lower, upper) = (0.0, 0.0);
+        } else if let Some(limit) = first_child(node, "limit") {
+            if let Some(v) = self.limit(limit, "lower", &what)? {
+                lower = v;
+            }
+            if let Some(v) = self.limit(limit, "upper", &what)? {
+                upper = v;
+            }
+        }
+
+        let mimic_node = first_child(node, "mimic");
+        Ok(Joint {
+            name,
+            joint_type,
+            parent,
+            child,
+            child2parent,
+            axis,
+            lower,
+            upper,
+            mimic: mimic_node.is_some(),
+            position,
+            axis_position,
+            child_position,
+            mimic_position: mimic_node.and_then(|m| self.node_pos(m)),
+        })
+    }
+
+    /// `<parent link>` / `<child link>`: present, non-empty, naming an existing link.
+    fn link_ref(
+        &self,
+        node: Node<'_, 'input>,
+        element: &str,
+        what: &str,
+        links: &HashMap<String, usize>,
+    ) -> Result<(String, Option<Position>)> {
+        let Some(el) = first_child(node, element) else {
+            return Err(Error::new(
+                ErrorKind::MissingAttribute,
+                format!("{what}: no <{element}> element"),
+            )
+            .at(self.node_pos(node)));
+        };
+        let link = self.required(el, "link", what)?;
+        let pos = attribute(el, "link").and_then(|a| self.value_pos(&a));
+        if !links.contains_key(&link) {
+            return Err(Error::new(
+                ErrorKind::UnknownLink,
+                format!("{what}: <{element} link={}>: no such link", shown(&link)),
+            )
+            .at(pos));
+        }
+        Ok((link, pos))
+    }
+
+    /// An optional attribute holding exactly three finite numbers separated by whitespace.
+    fn vec3(&self, node: Node<'_, 'input>, name: &str, what: &str) -> Result<Option<[f64; 3]>> {
+        let Some(attr) = attribute(node, name) else {
+            return Ok(None);
+        };
+        let element = node.tag_name().name();
+        let value = attr.value();
+        let pos = self.value_pos(&attr);
+        let context = || format!("{what}: <{element} {name}={}>", shown(value));
+        let mut out = [0.0; 3];
+        let mut count = 0;
+        for token in value.split_ascii_whitespace() {
+            let x: f64 = token.parse().map_err(|_| {
+                Error::new(
+                    ErrorKind::InvalidNumber,
+                    format!("{}: {} is not a number", context(), shown(token)),
+                )
+                .at(pos)
+            })?;
+            if count < 3 {
+                out[count] = x;
+            }
+            count += 1;
+        }
+        if count != 3 {
+            return Err(Error::new(
+                ErrorKind::InvalidNumber,
+                format!("{}: expected 3 numbers, found {count}", context()),
+            )
+            .at(pos));
+        }
+        if let Some(i) = out.iter().position(|x| !x.is_finite()) {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                format!(
+                    "{}: component {} is {}; geometry must be finite",
+                    context(),
+                    i + 1,
+                    out[i]
+                ),
+            )
+            .at(pos));
+        }
+        Ok(Some(out))
+    }
+
+    /// An optional limit: one number, ±∞ allowed, NaN not.
+    fn limit(&self, node: Node<'_, 'input>, name: &str, what: &str) -> Result<Option<f64>> {
+        let Some(attr) = attribute(node, name) else {
+            return Ok(None);
+        };
+        let value = attr.value();
+        let pos = self.value_pos(&attr);
+        let x: f64 = value
+            .trim_matches(|c: char| c.is_ascii_whitespace())
+            .parse()
+            .map_err(|_| {
+                Error::new(
+                    ErrorKind::InvalidNumber,
+                    format!("{what}: <limit {name}={}>: not a number", shown(value)),
+                )
+                .at(pos)
+            })?;
+        if x.is_nan() {
+            return Err(Error::new(
+                ErrorKind::NonFinite,
+                format!(
+                    "{what}: <limit {name}={}>: NaN is not a limit",
+                    shown(value)
+                ),
+            )
+            .at(pos));
+        }
+        Ok(Some(x))
+    }
+}
+
+/// Every link has at most one parent joint, and following parents never comes back.
+fn check_tree(links: &[Link], joints: &[Joint]) -> Result<()> {
+    let mut parent_joint: HashMap<&str, usize> = HashMap::new();
+    for (j, joint) in joints.iter().enumerate() {
+        if joint.parent == joint.child {
+            return Err(Error::new(
+                ErrorKind::Cycle,
+                format!(
+                    "joint '{}': link '{}' is its own parent",
+                    joint.name, joint.child
+                ),
+            )
+            .at(joint.child_position.or(joint.position)));
+        }
+        if let Some(&first) = parent_joint.get(joint.child.as_str()) {
+            return Err(Error::new(
+                ErrorKind::MultipleParents,
+                format!(
+                    "link '{}' has two parents: joint '{}' (parent link '{}') and joint '{}' \
+                     (parent link '{}')",
+                    joint.child, joints[first].name, joints[first].parent, joint.name, joint.parent
+                ),
+            )
+            .at(joint.child_position.or(joint.position)));
+        }
+        parent_joint.insert(joint.child.as_str(), j);
+    }
+    // 0 = unvisited, 1 = on the current walk, 2 = known to reach a root.
+    let mut state: HashMap<&str, u8> = HashMap::new();
+    for link in links {
+        let mut walk: Vec<&str> = Vec::new();
+        let mut cur = link.name.as_str();
+        loop {
+            match state.get(cur).copied().unwrap_or(0) {
+                2 => break,
+                1 => {
+                    let start = walk.iter().position(|l| *l == cur).unwrap_or(0);
+                    let mut names: Vec<&str> = walk[start..].to_vec();
+                    names.push(cur);
+                    let j = parent_joint.get(cur).copied();
+                    let joint = j.map(|j| &joints[j]);
+                    return Err(Error::new(
+                        ErrorKind::Cycle,
+                        format!(
+                            "the links form a cycle (each link's parent is the next): {}",
+                            names.join(" → ")
+                        ),
+                    )
+                    .at(joint.and_then(|j| j.child_position.or(j.position))));
+                }
+                _ => {}
+            }
+            state.insert(cur, 1);
+            walk.push(cur);
+            match parent_joint.get(cur) {
+                Some(&j) => cur = joints[j].parent.as_str(),
+                None => break,
+            }
+        }
+        for l in walk {
+            state.insert(l, 2);
+        }
+    }
+    Ok(())
+}

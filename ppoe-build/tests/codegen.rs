@@ -1,0 +1,344 @@
+//! Generated source: deterministic, documented, and exactly as rustfmt formats it (checked
+//! with `rustfmt --check` when rustfmt is installed; skipped otherwise).
+
+use ppoe_build::codegen::{self, Source};
+use ppoe_build::{ChainJoint, Config, ErrorKind, JointKind, RobotChain, Scalar};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn urdf(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../test_data/urdf")
+        .join(name)
+}
+
+/// The requests of the golden files, plus a few more.
+const CHAINS: &[(&str, &str, &str)] = &[
+    ("seed.urdf", "linkmount", "tcp"),
+    ("continuous.urdf", "base", "ee"),
+    ("fixed_between.urdf", "world", "tool_tip"),
+    ("prismatic.urdf", "base_link", "tool0"),
+    ("rpy_everywhere.urdf", "base", "tool"),
+    ("rpy_everywhere.urdf", "link2", "tool"),
+    ("tree.urdf", "base_footprint", "left_tip"),
+    ("tree.urdf", "base_footprint", "right_tip"),
+];
+
+fn rustfmt_available() -> bool {
+    Command::new("rustfmt")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+/// `None` if rustfmt accepts `source` unchanged, else its diff.
+fn rustfmt_diff(source: &str, tag: &str) -> Option<String> {
+    // Outside the workspace, so that no rustfmt.toml of ours applies: the output is meant
+    // for rustfmt's defaults.
+    let dir = std::env::temp_dir().join(format!("ppoe-build-fmt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join(format!("{tag}.rs"));
+    std::fs::write(&file, source).unwrap();
+    let out = Command::new("rustfmt")
+        .args(["--check", "--edition", "2021"])
+        .arg(&file)
+        .output()
+        .expect("rustfmt runs");
+    let _ = std::fs::remove_file(&file);
+    if out.status.success() {
+        None
+    } else {
+        Some(format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        ))
+    }
+}
+
+#[test]
+fn generated_tables_are_rustfmt_clean() {
+    if !rustfmt_available() {
+        eprintln!("note: rustfmt not found, skipping the formatting check");
+        return;
+    }
+    // The check is not vacuous: rustfmt does flag unformatted code.
+    assert!(rustfmt_diff("pub const X: u8=1;\n", "unformatted").is_some());
+    for (file, base, tip) in CHAINS {
+        let path = urdf(file);
+        if !path.exists() {
+            continue;
+        }
+        let source = Config::new(&path)
+            .base(*base)
+            .tip(*tip)
+            .scalar(Scalar::Both)
+            .name("ROBOT")
+            .generate()
+            .unwrap();
+        if let Some(diff) = rustfmt_diff(&source, &format!("{base}_{tip}")) {
+            panic!("{file} {base}->{tip}: not rustfmt-clean:\n{diff}");
+        }
+    }
+}
+
+/// A small deterministic generator (xorshift) for synthetic chains.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+    /// Values whose printed form has very different lengths.
+    fn value(&mut self) -> f64 {
+        let u = (self.next() >> 11) as f64 / (1u64 << 53) as f64;
+        match self.below(8) {
+            0 => 0.0,
+            1 => 1.0,
+            2 => -0.5,
+            3 => (u * 1000.0).round() / 1000.0,
+            4 => -(u * 1e8).round() / 1e8,
+            5 => u * 1e-20,
+            6 => -u * 1e20,
+            _ => u - 0.5,
+        }
+    }
+    fn limit(&mut self, lower: bool) -> f64 {
+        match self.below(4) {
+            0 if lower => f64::NEG_INFINITY,
+            0 => f64::INFINITY,
+            1 => 1e300,
+            _ => self.value(),
+        }
+    }
+}
+
+fn synthetic(rng: &mut Rng, n: usize, name_len: usize) -> RobotChain {
+    let name = |rng: &mut Rng, len: usize| -> String {
+        (0..len.max(1))
+            .map(|_| (b'a' + rng.below(26) as u8) as char)
+            .collect()
+    };
+    let joints = (0..n)
+        .map(|_| {
+            let kind = match rng.below(3) {
+                0 => JointKind::Revolute,
+                1 => JointKind::Continuous,
+                _ => JointKind::Prismatic,
+            };
+            let mut screw = [0.0; 6];
+            for x in &mut screw {
+                *x = rng.value();
+            }
+            let len = 1 + rng.below(name_len as u64 + 1) as usize;
+            ChainJoint {
+                name: name(rng, len),
+                kind,
+                screw,
+                lower: rng.limit(true),
+                upper: rng.limit(false),
+            }
+        })
+        .collect();
+    let mut home = [[0.0; 4]; 4];
+    for row in &mut home[..3] {
+        for x in row.iter_mut() {
+            *x = rng.value();
+        }
+    }
+    home[3][3] = 1.0;
+    RobotChain {
+        robot: "synthetic".into(),
+        base: name(rng, name_len),
+        tip: name(rng, name_len),
+        joints,
+        home,
+    }
+}
+
+#[test]
+fn synthetic_tables_are_rustfmt_clean() {
+    if !rustfmt_available() {
+        eprintln!("note: rustfmt not found, skipping the formatting check");
+        return;
+    }
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let source = Source {
+        file_name: "synthetic.urdf".into(),
+        sha256: codegen::sha256_hex(b"synthetic"),
+    };
+    // Batch many items into a few files (rustfmt runs are slow).
+    let const_names = [
+        "A",
+        "SEED",
+        "A_RATHER_LONG_CONST_NAME_FOR_THE_TABLE",
+        &"N".repeat(48),
+    ];
+    for batch in 0..6 {
+        let mut all = String::new();
+        let mut k = 0;
+        for n in [0usize, 1, 1, 2, 3, 6, 7] {
+            for name_len in [1usize, 8, 30, 70] {
+                let chain = synthetic(&mut rng, n, name_len);
+                let stem = const_names[(k + batch) % const_names.len()];
+                let const_name: String = format!("T{k}_{stem}").chars().take(48).collect();
+                let text = codegen::generate(&chain, &const_name, Scalar::Both, &source).unwrap();
+                if !all.is_empty() {
+                    all.push('\n');
+                }
+                all.push_str(&text);
+                k += 1;
+            }
+        }
+        // Each table alone and the concatenation are formatted.
+        if let Some(diff) = rustfmt_diff(&all, &format!("synthetic{batch}")) {
+            panic!("synthetic batch {batch}: not rustfmt-clean:\n{diff}");
+        }
+    }
+}
+
+#[test]
+fn output_is_deterministic_documented_and_portable() {
+    let path = urdf("seed.urdf");
+    let mut config = Config::new(&path);
+    config.base("linkmount").tip("tcp").scalar(Scalar::Both);
+    let a = config.generate().unwrap();
+    let b = config.generate().unwrap();
+    assert_eq!(a, b);
+    // Default name from the file stem; the f32 table is NAME_F32.
+    assert!(a.contains("pub const SEED: ppoe::chain::Chain<f64, 6> = ppoe::chain::Chain::new("));
+    assert!(a.contains("pub const SEED_F32: ppoe::chain::Chain<f32, 6> = ppoe::chain::Chain::new("));
+    // The doc comment: file name, sha256, base, tip, joints.
+    let sha = codegen::sha256_hex(&std::fs::read(&path).unwrap());
+    assert!(a.contains(&format!("/// sha256 `{sha}`.")));
+    assert!(a.contains("from `seed.urdf`"));
+    assert!(a.contains("/// * base: `linkmount`"));
+    assert!(a.contains("/// * tip: `tcp`"));
+    for j in 1..=6 {
+        assert!(a.contains(&format!("`joint{j}` (revolute")));
+    }
+    // No directory in the output (it must not depend on the checkout location).
+    let dir = path.parent().unwrap().to_string_lossy().into_owned();
+    assert!(!a.contains(&dir));
+    // Unbounded limits.
+    assert!(a.contains("f64::INFINITY") && a.contains("f64::NEG_INFINITY"));
+    assert!(a.contains("f32::INFINITY") && a.contains("f32::NEG_INFINITY"));
+
+    // Only the requested tables.
+    let f64_only = Config::new(&path)
+        .base("linkmount")
+        .tip("tcp")
+        .name("ARM")
+        .generate()
+        .unwrap();
+    assert!(f64_only.contains("pub const ARM: ppoe::chain::Chain<f64, 6>"));
+    assert!(!f64_only.contains("f32"));
+    let f32_only = Config::new(&path)
+        .base("linkmount")
+        .tip("tcp")
+        .name("ARM")
+        .scalar(Scalar::F32)
+        .generate()
+        .unwrap();
+    assert!(f32_only.contains("pub const ARM_F32: ppoe::chain::Chain<f32, 6>"));
+    assert!(!f32_only.contains("Chain<f64"));
+}
+
+#[test]
+fn every_f64_value_is_written_in_round_trip_form() {
+    let chain = Config::new(urdf("rpy_everywhere.urdf"))
+        .base("base")
+        .tip("tool")
+        .chain()
+        .unwrap();
+    let source = Source {
+        file_name: "x.urdf".into(),
+        sha256: "0".repeat(64),
+    };
+    let text = codegen::generate(&chain, "X", Scalar::F64, &source).unwrap();
+    // The literals, in order, parse back to the chain's values bit for bit.
+    let code: String = text
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("//"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let mut values = Vec::new();
+    for token in code.split(|c: char| c == ',' || c == '[' || c == ']' || c.is_whitespace()) {
+        let t = token.trim_end_matches([')', ';', '>']);
+        if t == "f64::INFINITY" {
+            values.push(f64::INFINITY);
+        } else if t == "f64::NEG_INFINITY" {
+            values.push(f64::NEG_INFINITY);
+        } else if t.starts_with(|c: char| c.is_ascii_digit() || c == '-') {
+            values.push(t.parse::<f64>().unwrap_or_else(|_| panic!("{t}")));
+        }
+    }
+    let mut expected = Vec::new();
+    for j in &chain.joints {
+        expected.extend_from_slice(&j.screw);
+        expected.push(j.lower);
+        expected.push(j.upper);
+    }
+    for row in &chain.home[..3] {
+        expected.extend_from_slice(&row[..3]);
+    }
+    for row in &chain.home[..3] {
+        expected.push(row[3]);
+    }
+    // The `N` of `Chain<f64, N>` comes first.
+    assert_eq!(values[0], chain.joints.len() as f64);
+    let values = &values[1..];
+    assert_eq!(values.len(), expected.len());
+    for (a, b) in values.iter().zip(&expected) {
+        assert_eq!(a.to_bits(), b.to_bits(), "{a:?} vs {b:?}");
+    }
+}
+
+#[test]
+fn bad_names_and_missing_links_are_config_errors() {
+    let path = urdf("seed.urdf");
+    let err = Config::new(&path)
+        .base("linkmount")
+        .tip("tcp")
+        .name("not-an-ident")
+        .generate()
+        .unwrap_err();
+    assert_eq!(err.kind(), ErrorKind::Config);
+    let err = Config::new(&path).base("linkmount").chain().unwrap_err();
+    assert_eq!(err.kind(), ErrorKind::Config);
+    let err = Config::new(urdf("no_such_file.urdf"))
+        .base("a")
+        .tip("b")
+        .chain()
+        .unwrap_err();
+    assert_eq!(err.kind(), ErrorKind::Io);
+    assert!(err.to_string().contains("no_such_file.urdf"));
+    assert_eq!("f32".parse::<Scalar>().unwrap(), Scalar::F32);
+    assert_eq!("both".parse::<Scalar>().unwrap(), Scalar::Both);
+    assert_eq!(
+        "f16".parse::<Scalar>().unwrap_err().kind(),
+        ErrorKind::Config
+    );
+}
+
+#[test]
+fn write_to_out_dir_writes_the_generated_file() {
+    let dir = std::env::temp_dir().join(format!("ppoe-build-out-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut config = Config::new(urdf("seed.urdf"));
+    config.base("linkmount").tip("tcp").scalar(Scalar::F32);
+    let target = dir.join("seed_table.rs");
+    config.write_to(&target).unwrap();
+    assert_eq!(
+        std::fs::read_to_string(&target).unwrap(),
+        config.generate().unwrap()
+    );
+    // Unchanged content: the file is left alone (its mtime would not change).
+    config.write_to(&target).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+}
