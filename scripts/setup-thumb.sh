@@ -1,0 +1,116 @@
+#!/usr/bin/env bash
+# scripts/setup-thumb.sh -- install (if missing) what building ppoe for Cortex-M needs.
+#
+# rustup cannot add thumb targets on our machines (only the registries are reachable), so we
+# use Debian's rustc-web (bookworm-security) together with its own library sources and
+# `-Z build-std` (see scripts/thumb-check.sh and shared/embedded/RECIPE.md):
+#   rustc-web cargo-web rust-web-src libstd-rust-web-dev  -> /usr/bin/rustc, /usr/bin/cargo,
+#                                                            library sources for build-std
+#   binutils-arm-none-eabi                                -> arm-none-eabi-{ld,size,nm,objdump}
+#   qemu-system-arm                                       -> running firmware (later)
+# Debian's rustc has no rust-lld: we use rustup's (~/.rustup/toolchains/*/lib/rustlib/<host>/bin/
+# rust-lld) and fall back to arm-none-eabi-ld.
+#
+# Idempotent: installs nothing (and runs no `apt-get update`) when everything is present.
+# Needs root (or password-less sudo) only when something must be installed.
+#
+# Usage: scripts/setup-thumb.sh          install if missing, report what is used (on stderr)
+#        scripts/setup-thumb.sh --env    same, and print shell assignments on stdout:
+#                                          eval "$(scripts/setup-thumb.sh --env)"
+#        -> THUMB_RUSTC THUMB_SYSROOT THUMB_LINKER THUMB_LINKER_FLAVOR
+set -euo pipefail
+
+PRINT_ENV=0
+case "${1:-}" in
+  --env) PRINT_ENV=1 ;;
+  "") ;;
+  -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+  *) echo "setup-thumb: unknown argument '$1'" >&2; exit 2 ;;
+esac
+
+log() { echo "setup-thumb: $*" >&2; }
+die() { echo "setup-thumb: ERROR: $*" >&2; exit 1; }
+
+PKGS=(rustc-web cargo-web rust-web-src libstd-rust-web-dev binutils-arm-none-eabi qemu-system-arm)
+
+is_installed() {  # dpkg's view: "install ok installed"
+  [ "$(dpkg-query -W -f='${db:Status-Status}' "$1" 2>/dev/null || true)" = installed ]
+}
+
+MISSING=()
+for p in "${PKGS[@]}"; do is_installed "$p" || MISSING+=("$p"); done
+
+if [ ${#MISSING[@]} -gt 0 ]; then
+  command -v apt-get >/dev/null || die "apt-get not found (Debian 12 expected); missing: ${MISSING[*]}"
+  SUDO=()
+  if [ "$(id -u)" != 0 ]; then
+    if command -v sudo >/dev/null && sudo -n true 2>/dev/null; then SUDO=(sudo -n)
+    else die "need root (or password-less sudo) to install: ${MISSING[*]}"; fi
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  APT=("${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get -q -o DPkg::Lock::Timeout=300)
+  t0=$SECONDS
+  # Always refresh the lists once before installing: a stale list on a fresh machine offers
+  # bookworm's old rustc-web (1.85) instead of bookworm-security's current one.
+  log "missing: ${MISSING[*]} -> apt-get update"
+  "${APT[@]}" update >/dev/null
+  log "apt-get install ${MISSING[*]}"
+  if ! "${APT[@]}" install -y --no-install-recommends "${MISSING[@]}" >/dev/null; then
+    log "install failed; retrying once after a fresh apt-get update"
+    sleep 5
+    "${APT[@]}" update >/dev/null
+    "${APT[@]}" install -y --no-install-recommends "${MISSING[@]}" >/dev/null \
+      || die "apt-get install ${MISSING[*]} failed"
+  fi
+  log "installed in $((SECONDS - t0)) s"
+else
+  log "all packages present (${PKGS[*]})"
+fi
+
+# --- Debian's compiler and its library sources -------------------------------------------
+THUMB_RUSTC=/usr/bin/rustc
+[ -x "$THUMB_RUSTC" ] || die "$THUMB_RUSTC missing after install"
+THUMB_SYSROOT=$("$THUMB_RUSTC" --print sysroot)
+LIBSRC=$THUMB_SYSROOT/lib/rustlib/src/rust/library
+[ -f "$LIBSRC/core/Cargo.toml" ] || die "library sources for build-std not found at $LIBSRC (rust-web-src)"
+TARGET_LIST=$("$THUMB_RUSTC" --print target-list)
+for t in thumbv6m-none-eabi thumbv7m-none-eabi thumbv7em-none-eabihf thumbv8m.main-none-eabihf; do
+  grep -qx "$t" <<<"$TARGET_LIST" || die "$THUMB_RUSTC does not know target $t"
+done
+
+# --- Linker (only needed for firmware binaries; a library build does not link) ----------
+HOST_TRIPLE=$(uname -m)-unknown-linux-gnu
+RUSTUP_DIR=${RUSTUP_HOME:-$HOME/.rustup}
+THUMB_LINKER=""
+# Prefer the default rustup toolchain's rust-lld, then any toolchain's.
+if command -v rustc >/dev/null && [ "$(command -v rustc)" != /usr/bin/rustc ]; then
+  cand=$(env -u RUSTC rustc --print sysroot 2>/dev/null)/lib/rustlib/$HOST_TRIPLE/bin/rust-lld
+  [ -x "$cand" ] && THUMB_LINKER=$cand
+fi
+if [ -z "$THUMB_LINKER" ]; then
+  for cand in "$RUSTUP_DIR"/toolchains/*/lib/rustlib/"$HOST_TRIPLE"/bin/rust-lld; do
+    [ -x "$cand" ] && { THUMB_LINKER=$cand; break; }
+  done
+fi
+if [ -n "$THUMB_LINKER" ]; then
+  THUMB_LINKER_FLAVOR=rust-lld
+elif command -v arm-none-eabi-ld >/dev/null; then
+  THUMB_LINKER=$(command -v arm-none-eabi-ld); THUMB_LINKER_FLAVOR=gnu-ld
+else
+  die "no linker for thumb targets: neither rustup's rust-lld nor arm-none-eabi-ld"
+fi
+
+# --- Report -------------------------------------------------------------------------------
+ver() { dpkg-query -W -f='${Version}' "$1" 2>/dev/null || echo '?'; }
+first_line() { local out; out=$("$@" 2>/dev/null) || { echo missing; return 0; }; echo "${out%%$'\n'*}"; }
+log "rustc:   $THUMB_RUSTC ($("$THUMB_RUSTC" -V), package rustc-web $(ver rustc-web))"
+log "sysroot: $THUMB_SYSROOT (build-std sources: $LIBSRC)"
+log "cargo:   /usr/bin/cargo ($(first_line /usr/bin/cargo -V)); rustup's: $(first_line env -u RUSTC cargo -V)"
+log "linker:  $THUMB_LINKER ($THUMB_LINKER_FLAVOR)"
+log "binutils: $(first_line arm-none-eabi-size --version)"
+log "qemu:    $(first_line qemu-system-arm --version)"
+
+if [ $PRINT_ENV = 1 ]; then
+  printf 'THUMB_RUSTC=%q\nTHUMB_SYSROOT=%q\nTHUMB_LINKER=%q\nTHUMB_LINKER_FLAVOR=%q\n' \
+    "$THUMB_RUSTC" "$THUMB_SYSROOT" "$THUMB_LINKER" "$THUMB_LINKER_FLAVOR"
+fi
