@@ -1,0 +1,77 @@
+//! The baseline: the same PPOE written with nalgebra's dense 4×4 and 6×6 matrices, the way
+//! a Rust user would port pytransform3d's example (MATH.md §5.2).
+
+use nalgebra::{Matrix3, Matrix4, Matrix6, RealField, Vector3, Vector6};
+
+/// Screw axes (rotation first), home pose and limits, as dense nalgebra types.
+pub struct NaChain<T: RealField + Copy> {
+    pub screws: Vec<Vector6<T>>,
+    pub home: Matrix4<T>,
+    pub lower: Vec<T>,
+    pub upper: Vec<T>,
+}
+
+fn skew<T: RealField + Copy>(w: &Vector3<T>) -> Matrix3<T> {
+    Matrix3::new(
+        T::zero(),
+        -w.z,
+        w.y,
+        w.z,
+        T::zero(),
+        -w.x,
+        -w.y,
+        w.x,
+        T::zero(),
+    )
+}
+
+/// SE(3) exponential as a dense 4×4 (Rodrigues + left Jacobian).
+pub fn exp<T: RealField + Copy>(xi: &Vector6<T>) -> Matrix4<T> {
+    let w = Vector3::new(xi[0], xi[1], xi[2]);
+    let v = Vector3::new(xi[3], xi[4], xi[5]);
+    let t = w.norm();
+    let mut m = Matrix4::identity();
+    if t == T::zero() {
+        m.fixed_view_mut::<3, 1>(0, 3).copy_from(&v);
+        return m;
+    }
+    let k = skew(&w);
+    let k2 = k * k;
+    let (s, c) = t.sin_cos();
+    let t2 = t * t;
+    let r = Matrix3::identity() + k * (s / t) + k2 * ((T::one() - c) / t2);
+    let j = Matrix3::identity() + k * ((T::one() - c) / t2) + k2 * ((t - s) / (t2 * t));
+    m.fixed_view_mut::<3, 3>(0, 0).copy_from(&r);
+    m.fixed_view_mut::<3, 1>(0, 3).copy_from(&(j * v));
+    m
+}
+
+/// Dense 6×6 adjoint of a 4×4 transform.
+pub fn adjoint<T: RealField + Copy>(m: &Matrix4<T>) -> Matrix6<T> {
+    let r: Matrix3<T> = m.fixed_view::<3, 3>(0, 0).into();
+    let p: Vector3<T> = m.fixed_view::<3, 1>(0, 3).into();
+    let mut a = Matrix6::zeros();
+    a.fixed_view_mut::<3, 3>(0, 0).copy_from(&r);
+    a.fixed_view_mut::<3, 3>(3, 3).copy_from(&r);
+    a.fixed_view_mut::<3, 3>(3, 0).copy_from(&(skew(&p) * r));
+    a
+}
+
+/// The PPOE with the right-perturbation last step `Ad(M⁻¹)`.
+pub fn ppoe<T: RealField + Copy>(
+    chain: &NaChain<T>,
+    thetas: &[T],
+    covs: &[Matrix6<T>],
+) -> (Matrix4<T>, Matrix6<T>) {
+    let mut t: Matrix4<T> = Matrix4::identity();
+    let mut c: Matrix6<T> = Matrix6::zeros();
+    for i in 0..chain.screws.len() {
+        let th = thetas[i].clamp(chain.lower[i], chain.upper[i]);
+        let d = exp(&(chain.screws[i] * th));
+        t *= d;
+        let g = adjoint(&d.try_inverse().unwrap_or_else(Matrix4::identity));
+        c = g * c * g.transpose() + covs[i];
+    }
+    let g = adjoint(&chain.home.try_inverse().unwrap_or_else(Matrix4::identity));
+    (t * chain.home, g * c * g.transpose())
+}

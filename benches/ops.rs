@@ -1,0 +1,254 @@
+//! Criterion benchmarks of every core operation, f32 and f64, with the nalgebra baseline
+//! of the PPOE measured in the same run. `scripts/bench-report.sh` turns the results into
+//! BENCHMARKS.md.
+
+mod baseline_nalgebra;
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use ppoe::chain::{ChainRef, Convention, Joint, JointKind};
+use ppoe::ellipsoid::{self, Surface};
+use ppoe::uncertainty::{self, IterationOptions, Order};
+use ppoe::{se3, so3, Mat6, Matrix, Real, Transform, Vec3, Vector};
+use serde_json::Value;
+use std::hint::black_box;
+
+fn golden_seed() -> Value {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/test_data/golden/ppoe/seed_linkmount_tcp.json"
+    );
+    serde_json::from_str(&std::fs::read_to_string(path).expect("golden seed file")).expect("json")
+}
+
+fn num(v: &Value) -> f64 {
+    match v {
+        Value::String(s) if s == "inf" => f64::INFINITY,
+        Value::String(s) if s == "-inf" => f64::NEG_INFINITY,
+        _ => v.as_f64().expect("number"),
+    }
+}
+
+/// The seed robot's chain (from the oracle's golden file) in scalar T.
+fn seed_chain<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
+    let joints = g["screw_axes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(g["limits"].as_array().unwrap())
+        .map(|(s, l)| {
+            let s: Vec<f64> = s.as_array().unwrap().iter().map(num).collect();
+            let l: Vec<f64> = l.as_array().unwrap().iter().map(num).collect();
+            Joint::new(
+                "j",
+                JointKind::Revolute,
+                std::array::from_fn(|i| T::lit(s[i])),
+                T::lit(l[0]),
+                T::lit(l[1]),
+            )
+        })
+        .collect();
+    let h: Vec<Vec<f64>> = g["home"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r.as_array().unwrap().iter().map(num).collect())
+        .collect();
+    let home = Transform::from_matrix4(&std::array::from_fn(|i| {
+        std::array::from_fn(|j| T::lit(h[i][j]))
+    }));
+    (joints, home)
+}
+
+/// The seed example's joint covariances and initial joint values.
+fn seed_inputs<T: Real>() -> ([T; 6], [Mat6<T>; 6]) {
+    let mut covs = [Mat6::zeros(); 6];
+    covs[0].0[2][2] = T::lit(0.05);
+    for i in [1, 2, 4] {
+        covs[i].0[1][1] = T::lit(0.05);
+    }
+    ([-0.5, -0.5, -0.5, 0.0, -0.5, 0.0].map(T::lit), covs)
+}
+
+/// A synthetic chain of n revolute joints with varied axes, and a full-rank covariance each.
+/// Joints, home pose, joint values and joint covariances of a benchmark chain.
+type Synthetic<T> = (Vec<Joint<T>>, Transform<T>, Vec<T>, Vec<Mat6<T>>);
+
+fn synthetic<T: Real>(n: usize) -> Synthetic<T> {
+    let joints = (0..n)
+        .map(|i| {
+            let a = i as f64 * 0.7;
+            let s = Vec3::<f64>::new(a.sin() * 0.3, a.cos() * 0.4, 0.866);
+            let q = Vec3::new(0.1 * i as f64, 0.05, 0.2 * i as f64);
+            let screw = se3::screw_axis(&q, &s, 0.0).unwrap();
+            Joint::new(
+                "j",
+                JointKind::Revolute,
+                screw.0.map(T::lit),
+                T::lit(-3.0),
+                T::lit(3.0),
+            )
+        })
+        .collect();
+    let home = Transform::from_parts(
+        [[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]].map(|r| r.map(T::lit)),
+        [0.1, 0.0, 0.2 * n as f64].map(T::lit),
+    );
+    let thetas = (0..n).map(|i| T::lit(0.3 + 0.1 * i as f64)).collect();
+    let cov = Mat6::from_diagonal(&Vector([1e-4, 2e-4, 1e-4, 1e-6, 2e-6, 1e-6].map(T::lit)));
+    (joints, home, thetas, vec![cov; n])
+}
+
+fn num_traits_abs<T: Real>(x: T) -> T {
+    if x < T::ZERO {
+        -x
+    } else {
+        x
+    }
+}
+
+fn ty<T>() -> &'static str {
+    if std::mem::size_of::<T>() == 4 {
+        "f32"
+    } else {
+        "f64"
+    }
+}
+
+fn core_ops<T: Real>(c: &mut Criterion) {
+    let t = ty::<T>();
+    let xi = Vector([0.3, -0.2, 0.5, 0.4, 0.1, -0.3].map(T::lit));
+    let tr = se3::exp(&xi);
+    let tr2 = se3::exp(&Vector([-0.6, 0.1, 0.2, 0.0, 0.7, 0.2].map(T::lit)));
+    let cov = Mat6::from_diagonal(&Vector([1e-3, 2e-3, 5e-4, 1e-3, 3e-3, 2e-3].map(T::lit)));
+    c.bench_function(&format!("so3_exp/{t}"), |b| {
+        b.iter(|| so3::exp(black_box(&xi.rotation())))
+    });
+    c.bench_function(&format!("so3_log/{t}"), |b| {
+        b.iter(|| so3::log(black_box(&tr.rotation)))
+    });
+    c.bench_function(&format!("se3_exp/{t}"), |b| {
+        b.iter(|| se3::exp(black_box(&xi)))
+    });
+    c.bench_function(&format!("se3_log/{t}"), |b| {
+        b.iter(|| se3::log(black_box(&tr)))
+    });
+    c.bench_function(&format!("adjoint/{t}"), |b| {
+        b.iter(|| black_box(&tr).adjoint())
+    });
+    c.bench_function(&format!("se3_left_jacobian/{t}"), |b| {
+        b.iter(|| se3::left_jacobian(black_box(&xi)))
+    });
+    c.bench_function(&format!("se3_left_jacobian_inv/{t}"), |b| {
+        b.iter(|| se3::left_jacobian_inv(black_box(&xi)))
+    });
+    for (name, order) in [
+        ("concat_globally_2nd", Order::Second),
+        ("concat_globally_4th", Order::Fourth),
+    ] {
+        c.bench_function(&format!("{name}/{t}"), |b| {
+            b.iter(|| uncertainty::concat_globally(black_box(&tr), &cov, &tr2, &cov, order))
+        });
+    }
+    c.bench_function(&format!("concat_locally/{t}"), |b| {
+        b.iter(|| uncertainty::concat_locally(black_box(&tr), &tr2, &cov, &cov))
+    });
+    c.bench_function(&format!("invert/{t}"), |b| {
+        b.iter(|| uncertainty::invert(black_box(&tr), &cov))
+    });
+    let means = [
+        tr,
+        tr * se3::exp(&Vector([0.01, 0.0, -0.02, 0.01, 0.0, 0.02].map(T::lit))),
+        tr2 * tr,
+    ];
+    let covs = [cov; 3];
+    c.bench_function(&format!("pose_fusion_k3/{t}"), |b| {
+        b.iter(|| uncertainty::pose_fusion(black_box(&means), &covs, &IterationOptions::default()))
+    });
+}
+
+fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
+    let t = ty::<T>();
+    let g = golden_seed();
+    let (joints, home) = seed_chain::<T>(&g);
+    let chain = ChainRef {
+        joints: &joints,
+        home,
+    };
+    let (thetas, covs) = seed_inputs::<T>();
+    c.bench_function(&format!("ppoe_seed/ours/{t}"), |b| {
+        b.iter(|| chain.ppoe(black_box(&thetas), &covs, Convention::Right))
+    });
+    c.bench_function(&format!("ppoe_seed/ours_4th_order/{t}"), |b| {
+        b.iter(|| chain.ppoe_fourth_order(black_box(&thetas), &covs, Convention::Right))
+    });
+    // The nalgebra baseline, checked to give the same numbers first.
+    let na = baseline_nalgebra::NaChain {
+        screws: joints
+            .iter()
+            .map(|j| nalgebra::Vector6::from_column_slice(&j.screw.0))
+            .collect(),
+        home: nalgebra::Matrix4::from_fn(|i, j| home.to_matrix4()[i][j]),
+        lower: joints.iter().map(|j| j.lower).collect(),
+        upper: joints.iter().map(|j| j.upper).collect(),
+    };
+    let na_covs: Vec<nalgebra::Matrix6<T>> = covs
+        .iter()
+        .map(|m| nalgebra::Matrix6::from_fn(|i, j| m.0[i][j]))
+        .collect();
+    let (na_pose, na_cov) = baseline_nalgebra::ppoe(&na, &thetas, &na_covs);
+    let ours = chain.ppoe(&thetas, &covs, Convention::Right).unwrap();
+    let tol = T::EPS * T::lit(1e3);
+    for i in 0..6 {
+        for j in 0..6 {
+            assert!(
+                num_traits_abs(na_cov[(i, j)] - ours.cov.0[i][j]) <= tol,
+                "nalgebra baseline disagrees"
+            );
+        }
+    }
+    for i in 0..3 {
+        assert!(
+            num_traits_abs(na_pose[(i, 3)] - ours.pose.translation.0[i]) <= tol,
+            "nalgebra baseline disagrees"
+        );
+    }
+    c.bench_function(&format!("ppoe_seed/nalgebra/{t}"), |b| {
+        b.iter(|| baseline_nalgebra::ppoe(&na, black_box(&thetas), &na_covs))
+    });
+
+    let mut group = c.benchmark_group(format!("ppoe_chain/{t}"));
+    for n in [1usize, 2, 4, 8, 16, 32] {
+        let (js, home, th, cv) = synthetic::<T>(n);
+        let ch = ChainRef { joints: &js, home };
+        group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+            b.iter(|| ch.ppoe(black_box(&th), &cv, Convention::Right))
+        });
+    }
+    group.finish();
+
+    let tip = ours;
+    let mut buf = vec![Vec3::<T>::zeros(); 2500];
+    for n in [20usize, 50] {
+        for (name, s) in [
+            ("lift", Surface::Lift),
+            ("pytransform3d", Surface::Pytransform3d),
+        ] {
+            c.bench_function(&format!("surface_{name}_n{n}/{t}"), |b| {
+                b.iter(|| {
+                    ellipsoid::surface_grid(s, black_box(&tip.pose), &tip.cov, T::ONE, n, &mut buf)
+                })
+            });
+        }
+    }
+    let _ = Matrix::<T, 1, 1>::zeros();
+}
+
+fn all(c: &mut Criterion) {
+    core_ops::<f64>(c);
+    core_ops::<f32>(c);
+    ppoe_ops::<f64>(c);
+    ppoe_ops::<f32>(c);
+}
+
+criterion_group!(benches, all);
+criterion_main!(benches);
