@@ -1,0 +1,222 @@
+//! ppoe on a Cortex-M core: the seed robot's PPOE in f64 and f32 against expectations
+//! computed on the host at build time (see build.rs). Prints a summary over semihosting and
+//! exits QEMU with status 0 if every case matches, 1 otherwise (a panic exits with 1 too).
+//!
+//! Tolerances (`max|a−b| / max(1, max|b|)` over the pose's 4×4 and, separately, the 6×6
+//! covariance): f64 ≤ 1e-12, f32 ≤ 1e-5 (the project's documented bounds, README
+//! "Accuracy").
+
+#![no_std]
+#![no_main]
+
+use core::hint::black_box;
+use cortex_m_rt::entry;
+use cortex_m_semihosting::{debug, hprintln};
+use panic_semihosting as _;
+use ppoe::chain::{Convention, UncertainPose};
+use ppoe::{Mat6, Matrix};
+
+// SEED: Chain<f64, 6> and SEED_F32: Chain<f32, 6>, generated from the URDF by ppoe-build.
+include!(concat!(env!("OUT_DIR"), "/seed_table.rs"));
+
+/// One test case and its host-computed PPOE (right convention).
+pub struct Case {
+    name: &'static str,
+    thetas: [f64; 6],
+    covs: [[[f64; 6]; 6]; 6],
+    pose: [[f64; 4]; 4],
+    cov: [[f64; 6]; 6],
+}
+
+// EXPECTED: [Case; K]
+include!(concat!(env!("OUT_DIR"), "/expected.rs"));
+
+const TOL_F64: f64 = 1e-12;
+const TOL_F32: f64 = 1e-5;
+
+/// The f64 PPOE as a symbol of its own (nm, instruction counts).
+#[inline(never)]
+#[no_mangle]
+pub fn ppoe_seed_f64(thetas: &[f64; 6], covs: &[Mat6<f64>; 6]) -> UncertainPose<f64> {
+    SEED.ppoe(thetas, covs, Convention::Right)
+}
+
+/// The f32 PPOE as a symbol of its own (nm, instruction counts).
+#[inline(never)]
+#[no_mangle]
+pub fn ppoe_seed_f32(thetas: &[f32; 6], covs: &[Mat6<f32>; 6]) -> UncertainPose<f32> {
+    SEED_F32.ppoe(thetas, covs, Convention::Right)
+}
+
+fn abs(x: f64) -> f64 {
+    if x < 0.0 {
+        -x
+    } else {
+        x
+    }
+}
+
+/// `max|a−b| / max(1, max|b|)`; +∞ if anything is NaN.
+fn rel_err<const R: usize, const C: usize>(a: &[[f64; C]; R], b: &[[f64; C]; R]) -> f64 {
+    let (mut num, mut den) = (0.0f64, 1.0f64);
+    for (ra, rb) in a.iter().zip(b) {
+        for (&x, &y) in ra.iter().zip(rb) {
+            let d = abs(x - y);
+            if d.is_nan() {
+                return f64::INFINITY;
+            }
+            if d > num {
+                num = d;
+            }
+            if abs(y) > den {
+                den = abs(y);
+            }
+        }
+    }
+    num / den
+}
+
+fn to_f64<const R: usize, const C: usize>(m: &[[f32; C]; R]) -> [[f64; C]; R] {
+    m.map(|row| row.map(f64::from))
+}
+
+/// Error of a result against a case: the worse of pose and covariance.
+fn case_err(pose: &[[f64; 4]; 4], cov: &[[f64; 6]; 6], c: &Case) -> f64 {
+    let (ep, ec) = (rel_err(pose, &c.pose), rel_err(cov, &c.cov));
+    if ep > ec || ep.is_nan() {
+        ep
+    } else {
+        ec
+    }
+}
+
+/// SysTick ticks (core clock) per call of `f`, averaged over `reps` calls. Under
+/// `qemu -icount shift=0` one instruction takes 1 ns; the mps2 boards clock SysTick at
+/// 25 MHz, so 1 tick = 40 instructions there. Without -icount the number means nothing.
+fn systick_per_call(reps: u32, mut f: impl FnMut()) -> u32 {
+    use cortex_m::peripheral::{syst::SystClkSource, SYST};
+    // SAFETY: single-threaded firmware, no interrupt handlers use SysTick.
+    let mut cp = unsafe { cortex_m::Peripherals::steal() };
+    cp.SYST.set_clock_source(SystClkSource::Core);
+    cp.SYST.set_reload(0x00FF_FFFF);
+    cp.SYST.clear_current();
+    cp.SYST.enable_counter();
+    let s0 = SYST::get_current();
+    for _ in 0..reps {
+        f();
+    }
+    let s1 = SYST::get_current();
+    cp.SYST.disable_counter();
+    (s0.wrapping_sub(s1) & 0x00FF_FFFF) / reps
+}
+
+const PAINT: u32 = 0x5AFE_C0DE;
+
+extern "C" {
+    /// End of .bss/.uninit (cortex-m-rt's linker script): the stack grows down towards it.
+    static mut __sheap: u32;
+}
+
+/// Stack bytes used by `f` (high-water mark): paints the free stack below the current
+/// stack pointer, runs `f`, and finds the lowest word that changed.
+#[inline(never)]
+fn stack_used(f: impl FnOnce()) -> usize {
+    let lo = core::ptr::addr_of_mut!(__sheap) as usize;
+    let sp = cortex_m::register::msp::read() as usize;
+    let hi = sp - 256; // leave this function's own frame and the painting loop alone
+    let mut p = (lo + 3) & !3;
+    while p < hi {
+        // SAFETY: [__sheap, sp - 256) is free stack memory, word aligned.
+        unsafe { (p as *mut u32).write_volatile(PAINT) };
+        p += 4;
+    }
+    f();
+    let mut p = (lo + 3) & !3;
+    // SAFETY: as above; reads only.
+    while p < hi && unsafe { (p as *const u32).read_volatile() } == PAINT {
+        p += 4;
+    }
+    sp - p
+}
+
+#[entry]
+fn main() -> ! {
+    hprintln!("ppoe firmware: seed robot, {} cases, f64 and f32", EXPECTED.len());
+    let (mut passed, mut worst64, mut worst32) = (0usize, 0.0f64, 0.0f64);
+    for c in EXPECTED.iter() {
+        // f64: the table SEED, inputs as they are.
+        let covs64: [Mat6<f64>; 6] = c.covs.map(Matrix);
+        let r64 = ppoe_seed_f64(black_box(&c.thetas), black_box(&covs64));
+        let e64 = case_err(&r64.pose.to_matrix4(), &r64.cov.0, c);
+        // f32: the table SEED_F32, inputs converted to f32.
+        let th32 = c.thetas.map(|t| t as f32);
+        let covs32: [Mat6<f32>; 6] = c.covs.map(|m| Matrix(m.map(|r| r.map(|x| x as f32))));
+        let r32 = ppoe_seed_f32(black_box(&th32), black_box(&covs32));
+        let e32 = case_err(&to_f64(&r32.pose.to_matrix4()), &to_f64(&r32.cov.0), c);
+
+        let ok = e64 <= TOL_F64 && e32 <= TOL_F32;
+        passed += usize::from(ok);
+        if !(e64 <= worst64) {
+            worst64 = e64;
+        }
+        if !(e32 <= worst32) {
+            worst32 = e32;
+        }
+        hprintln!(
+            "  {:<8} f64 {:.2e}  f32 {:.2e}  {}",
+            c.name,
+            e64,
+            e32,
+            if ok { "ok" } else { "MISMATCH" }
+        );
+    }
+    let all = passed == EXPECTED.len();
+    hprintln!(
+        "summary: {}/{} cases passed; worst rel. error f64 {:.2e} (tol {:.0e}), f32 {:.2e} (tol {:.0e})",
+        passed,
+        EXPECTED.len(),
+        worst64,
+        TOL_F64,
+        worst32,
+        TOL_F32
+    );
+
+    // Cost of one 6-DOF PPOE call (meaningful under -icount shift=0 only, see above).
+    let c = &EXPECTED[0];
+    let covs64: [Mat6<f64>; 6] = c.covs.map(Matrix);
+    let th32 = c.thetas.map(|t| t as f32);
+    let covs32: [Mat6<f32>; 6] = c.covs.map(|m| Matrix(m.map(|r| r.map(|x| x as f32))));
+    let t32 = systick_per_call(16, || {
+        black_box(ppoe_seed_f32(black_box(&th32), black_box(&covs32)));
+    });
+    let t64 = systick_per_call(4, || {
+        black_box(ppoe_seed_f64(black_box(&c.thetas), black_box(&covs64)));
+    });
+    hprintln!(
+        "systick ticks per PPOE call: f32 {} f64 {} (x40 = instructions under qemu -icount shift=0 on mps2 boards; meaningless otherwise)",
+        t32,
+        t64
+    );
+
+    let s32 = stack_used(|| {
+        black_box(ppoe_seed_f32(black_box(&th32), black_box(&covs32)));
+    });
+    let s64 = stack_used(|| {
+        black_box(ppoe_seed_f64(black_box(&c.thetas), black_box(&covs64)));
+    });
+    hprintln!(
+        "stack per PPOE call (high-water below the caller, inputs excluded): f32 {} B, f64 {} B",
+        s32,
+        s64
+    );
+
+    if all {
+        hprintln!("RESULT: PASS");
+        debug::exit(debug::EXIT_SUCCESS);
+    } else {
+        hprintln!("RESULT: FAIL");
+        debug::exit(debug::EXIT_FAILURE);
+    }
+    #[allow(clippy::empty_loop)]
+    loop {}
+}
