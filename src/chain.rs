@@ -266,17 +266,17 @@ impl<'a, T: Real> ChainRef<'a, T> {
         for ((j, theta), cov) in self.joints.iter().zip(thetas).zip(covs) {
             let d = j.displacement(j.clip(*theta, clip_continuous));
             p = p * d;
-            c = c.congruence(&d.inverse().adjoint()) + *cov;
+            c = d.inverse().transport_covariance(&c) + *cov;
         }
         let pose = p * self.home;
         let last = match convention {
-            Convention::Right => self.home.inverse().adjoint(),
-            Convention::Left => p.adjoint(),
-            Convention::Pytransform3d => self.home.adjoint(),
+            Convention::Right => self.home.inverse(),
+            Convention::Left => p,
+            Convention::Pytransform3d => self.home,
         };
         Ok(UncertainPose {
             pose,
-            cov: c.congruence(&last),
+            cov: last.transport_covariance(&c),
         })
     }
 
@@ -316,13 +316,13 @@ impl<'a, T: Real> ChainRef<'a, T> {
         let mut c = Mat6::zeros();
         for ((j, theta), cov) in self.joints.iter().zip(thetas).zip(covs) {
             let d = j.displacement(j.clip(*theta, false));
-            let global = cov.congruence(&d.adjoint());
+            let global = d.transport_covariance(cov);
             (p, c) = concat_globally(&d, &global, &p, &c, Order::Fourth);
         }
         let pose = p * self.home;
         let cov = match convention {
             Convention::Left => c,
-            _ => c.congruence(&pose.inverse().adjoint()),
+            _ => pose.inverse().transport_covariance(&c),
         };
         Ok(UncertainPose { pose, cov })
     }

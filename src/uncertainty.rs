@@ -31,14 +31,14 @@ pub enum Order {
 /// `Ad(T̄)·Σ·Ad(T̄)ᵀ`.
 #[inline]
 pub fn right_to_left<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Mat6<T> {
-    cov.congruence(&mean.adjoint())
+    mean.transport_covariance(cov)
 }
 
 /// Converts a left (global) covariance of `mean` into the right (local) one:
 /// `Ad(T̄⁻¹)·Σ·Ad(T̄⁻¹)ᵀ`.
 #[inline]
 pub fn left_to_right<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Mat6<T> {
-    cov.congruence(&mean.inverse().adjoint())
+    mean.inverse().transport_covariance(cov)
 }
 
 /// Concatenates two uncertain transforms with **left (global)** perturbations:
@@ -58,7 +58,7 @@ pub fn concat_globally<T: Real>(
     cov_b2c: &Mat6<T>,
     order: Order,
 ) -> (Transform<T>, Mat6<T>) {
-    let moved = cov_a2b.congruence(&mean_b2c.adjoint());
+    let moved = mean_b2c.transport_covariance(cov_a2b);
     let mut cov = *cov_b2c + moved;
     if order == Order::Fourth {
         cov += fourth_order_terms(cov_b2c, &moved);
@@ -137,8 +137,8 @@ pub fn concat_locally<T: Real>(
     cov_a: &Mat6<T>,
     cov_b: &Mat6<T>,
 ) -> (Transform<T>, Mat6<T>) {
-    let g = mean_a2b.inverse().adjoint();
-    (*mean_b2c * *mean_a2b, cov_b.congruence(&g) + *cov_a)
+    let moved = mean_a2b.inverse().transport_covariance(cov_b);
+    (*mean_b2c * *mean_a2b, moved + *cov_a)
 }
 
 /// Inverts an uncertain transform with **left (global)** perturbation: returns
@@ -147,7 +147,7 @@ pub fn concat_locally<T: Real>(
 /// Corresponds to pytransform3d's `invert_uncertain_transform`.
 pub fn invert<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> (Transform<T>, Mat6<T>) {
     let inv = mean.inverse();
-    (inv, cov.congruence(&inv.adjoint()))
+    (inv, inv.transport_covariance(cov))
 }
 
 /// Options of the iterative estimators ([`pose_fusion`], [`frechet_mean`]).

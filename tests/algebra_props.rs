@@ -335,3 +335,20 @@ proptest! {
         f32_matches_f64(xi, c1, th);
     }
 }
+
+fn transport_matches_dense<T: Real>(a: [f64; 6], c1: [[f64; 6]; 6]) {
+    let t = se3::exp(&v6::<T>(a));
+    let c = mat6::<T>(c1);
+    let dense = c.congruence(&t.adjoint());
+    let fast = t.transport_covariance(&c);
+    assert_eq!(fast.asymmetry(), T::ZERO);
+    assert_relative_eq!(fast, dense, epsilon = tol::<T>() * T::lit(4.0));
+}
+
+proptest! {
+    #[test]
+    fn structured_transport(a in twist(), c1 in covariance()) {
+        transport_matches_dense::<f32>(a, c1);
+        transport_matches_dense::<f64>(a, c1);
+    }
+}
