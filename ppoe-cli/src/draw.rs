@@ -1,0 +1,311 @@
+//! What `demo`, `render` and `mesh` draw: for each state of the arm, the PPOE, the joint
+//! frames along the chain, the equiprobable surface of the tool position and the
+//! second-order mean, as a [`picture::Frame`].
+
+use crate::frames::{self, Mat4};
+use crate::picture::{self, Frame};
+use crate::{eval, seed, ChainArgs, SurfaceArg, SurfaceArgs};
+use anyhow::{bail, Context};
+use ppoe::chain::{ChainRef, Convention};
+use ppoe::ellipsoid::{self, Surface};
+use ppoe::{Mat6, Transform, Vec3};
+use std::io::{IsTerminal, Write};
+use std::path::Path;
+use std::time::Instant;
+
+/// The surface radius k (Mahalanobis, 3D) and a label for it.
+pub fn level(args: &SurfaceArgs) -> anyhow::Result<(f64, String)> {
+    let (k, p) = match (args.level.sigma, args.level.probability) {
+        (_, Some(p)) => {
+            if !(p > 0.0 && p < 1.0) {
+                bail!("--probability {p}: expected a probability strictly between 0 and 1");
+            }
+            let k = ellipsoid::chi2_3_radius(p)
+                .with_context(|| format!("--probability {p}: no radius"))?;
+            (k, p)
+        }
+        (k, None) => {
+            let k = k.unwrap_or(1.0);
+            if !(k.is_finite() && k > 0.0) {
+                bail!("--sigma {k}: expected a positive number of standard deviations");
+            }
+            (k, ellipsoid::chi2_3_probability(k))
+        }
+    };
+    let what = match args.surface {
+        SurfaceArg::Lift => "lift surface",
+        SurfaceArg::Marginal => "linear marginal ellipsoid",
+        SurfaceArg::Pytransform3d => "pytransform3d projected ellipsoid",
+    };
+    let label = if args.surface == SurfaceArg::Pytransform3d {
+        format!("{what}, factor {k:.3} (not equiprobable)")
+    } else {
+        format!("{what}, k = {k:.3} σ ({:.1} % of a 3D Gaussian)", 100.0 * p)
+    };
+    Ok((k, label))
+}
+
+/// Everything computed for one state of the arm.
+pub struct State {
+    /// The picture's content.
+    pub frame: Frame,
+    /// The mean pose.
+    pub pose: Transform<f64>,
+    /// The covariance of the right perturbation.
+    pub cov_right: Mat6<f64>,
+    /// The pytransform3d-compatible covariance.
+    pub cov_compat: Mat6<f64>,
+}
+
+/// The PPOE and the picture content for one state.
+#[allow(clippy::too_many_arguments)]
+pub fn state(
+    title: String,
+    chain: &ChainRef<'_, f64>,
+    home_frames: &[Mat4],
+    thetas: &[f64],
+    covs: &[Mat6<f64>],
+    surface: SurfaceArg,
+    k: f64,
+    grid: usize,
+    label: &str,
+) -> anyhow::Result<State> {
+    let right = chain
+        .ppoe_checked(thetas, covs, Convention::Right)
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    let compat = chain
+        .ppoe_checked(thetas, covs, Convention::Pytransform3d)
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+
+    // Joint frames along the chain: T_base←child_i(θ) = D₁…Dᵢ·L_i.
+    let mut frames_out = vec![frames::identity()];
+    let mut points = vec![[0.0, 0.0, 0.0]];
+    let mut p = Transform::identity();
+    for ((j, theta), l) in chain.joints.iter().zip(thetas).zip(home_frames) {
+        p = p * j.displacement(j.clip(*theta, false));
+        let f = (p * Transform::from_matrix4(l)).to_matrix4();
+        points.push([f[0][3], f[1][3], f[2][3]]);
+        frames_out.push(f);
+    }
+    let tool = right.pose.to_matrix4();
+    points.push(right.pose.translation.0);
+    frames_out.push(tool);
+
+    let mut grid_pts = vec![Vec3::zeros(); grid * grid];
+    let (s, mean, cov) = match surface {
+        SurfaceArg::Lift => (Surface::Lift, right.pose, right.cov),
+        SurfaceArg::Marginal => (Surface::Marginal, right.pose, right.cov),
+        SurfaceArg::Pytransform3d => (Surface::Pytransform3d, compat.pose, compat.cov),
+    };
+    ellipsoid::surface_grid(s, &mean, &cov, k, grid, &mut grid_pts)
+        .map_err(|e| anyhow::anyhow!("the surface: {e}"))?;
+    let surface_rows = grid_pts
+        .chunks(grid)
+        .map(|row| row.iter().map(|v| v.0).collect())
+        .collect();
+    let mean2 = ellipsoid::position_mean_second_order(&right.pose, &right.cov).0;
+    Ok(State {
+        frame: Frame {
+            title,
+            joints: points,
+            frames: frames_out,
+            tool,
+            surface: surface_rows,
+            mean2,
+            sigma_label: label.to_string(),
+        },
+        pose: right.pose,
+        cov_right: right.cov,
+        cov_compat: compat.cov,
+    })
+}
+
+/// Creates the output directory if needed.
+pub fn ensure_dir(dir: &Path) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("cannot create the output directory {}", dir.display()))
+}
+
+/// The frames of `render` and `mesh`: one per case of the input JSON.
+pub fn frames_for_cases(
+    chain_args: &ChainArgs,
+    input: Option<&Path>,
+    surface: &SurfaceArgs,
+) -> anyhow::Result<Vec<Frame>> {
+    let (k, label) = level(surface)?;
+    let config = chain_args.config();
+    let robot = config.chain()?;
+    let bytes = std::fs::read(&chain_args.urdf)
+        .with_context(|| format!("cannot read {}", chain_args.urdf.display()))?;
+    let urdf = ppoe_build::Urdf::parse_bytes(&bytes)?;
+    let home_frames = frames::joint_home_frames(&urdf, &robot).map_err(anyhow::Error::msg)?;
+    let input = eval::read_input(input)?;
+    if input.cases.is_empty() {
+        bail!("the input has no cases");
+    }
+    eval::check_counts(&robot, &input)?;
+    let (joints, home) = eval::core_joints::<f64>(&robot);
+    let chain = ChainRef {
+        joints: &joints,
+        home,
+    };
+    let n = input.cases.len();
+    let mut out = Vec::with_capacity(n);
+    for (i, case) in input.cases.iter().enumerate() {
+        // Same checks and messages as `eval`.
+        eval::eval_case(&chain, i, case, Convention::Right)?;
+        let covs: Vec<Mat6<f64>> = case.covs.iter().map(|c| Mat6::from(*c)).collect();
+        let title = format!("{} → {}: case {}/{}", robot.base, robot.tip, i + 1, n);
+        let s = state(
+            title,
+            &chain,
+            &home_frames,
+            &case.thetas,
+            &covs,
+            surface.surface,
+            k,
+            surface.grid as usize,
+            &label,
+        )
+        .with_context(|| format!("case {i}"))?;
+        out.push(s.frame);
+    }
+    Ok(out)
+}
+
+fn print_matrix<const C: usize>(title: &str, m: &[[f64; C]]) {
+    println!("{title}");
+    for row in m {
+        let cells: Vec<String> = row.iter().map(|x| format!("{x:>24.16e}")).collect();
+        println!("  [{}]", cells.join(","));
+    }
+}
+
+/// A progress line on stderr, redrawn in place on a terminal (silent otherwise).
+struct Progress {
+    tty: bool,
+    total: usize,
+    what: &'static str,
+}
+
+impl Progress {
+    fn new(what: &'static str, total: usize) -> Self {
+        let tty = std::io::stderr().is_terminal();
+        Self { tty, total, what }
+    }
+
+    fn set(&self, done: usize) {
+        if !self.tty {
+            return;
+        }
+        let width = 30;
+        let filled = (width * done)
+            .checked_div(self.total)
+            .unwrap_or(width)
+            .min(width);
+        let mut e = std::io::stderr().lock();
+        let _ = write!(
+            e,
+            "\r{} [{}{}] {done}/{}",
+            self.what,
+            "#".repeat(filled),
+            "-".repeat(width - filled),
+            self.total
+        );
+        let _ = e.flush();
+    }
+
+    fn finish(&self) {
+        if self.tty {
+            eprintln!();
+        }
+    }
+}
+
+/// `ppoe demo`: the seed example from the build-time table.
+pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Result<()> {
+    let start = Instant::now();
+    let (k, label) = level(surface)?;
+    let chain = seed::SEED.as_ref();
+    let covs = seed::covs();
+    let grid = surface.grid as usize;
+
+    let initial = state(
+        format!("ppoe seed: frame 0/{n_frames}"),
+        &chain,
+        &seed::SEED_JOINT_FRAMES,
+        &seed::initial_thetas(),
+        &covs,
+        surface.surface,
+        k,
+        grid,
+        &label,
+    )?;
+    println!(
+        "seed robot: '{}' → '{}', joints {} (table generated at build time from seed.urdf)",
+        seed::SEED.base,
+        seed::SEED.tip,
+        seed::SEED
+            .joints
+            .iter()
+            .map(|j| j.name)
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    println!("initial joint values: {:?}", seed::initial_thetas());
+    print_matrix(
+        "initial pose (tcp in linkmount):",
+        &initial.pose.to_matrix4(),
+    );
+    print_matrix(
+        "initial covariance, right perturbation T = T̄·Exp(η) (rotation first):",
+        &initial.cov_right.0,
+    );
+    print_matrix(
+        "initial covariance, pytransform3d-compatible (Ad(M), for comparison):",
+        &initial.cov_compat.0,
+    );
+    let m2 = initial.frame.mean2;
+    println!(
+        "second-order mean of the tool position: [{:.6}, {:.6}, {:.6}] (t̄ = [{:.6}, {:.6}, {:.6}])",
+        m2[0],
+        m2[1],
+        m2[2],
+        initial.pose.translation.0[0],
+        initial.pose.translation.0[1],
+        initial.pose.translation.0[2]
+    );
+    println!("surface: {label}");
+
+    ensure_dir(out)?;
+    let png = out.join("ppoe-seed.png");
+    picture::write_png(&png, &initial.frame)
+        .with_context(|| format!("cannot write {}", png.display()))?;
+
+    let mut frames = Vec::with_capacity(n_frames);
+    for step in 0..n_frames {
+        let s = state(
+            format!("ppoe seed: frame {step}/{n_frames}"),
+            &chain,
+            &seed::SEED_JOINT_FRAMES,
+            &seed::thetas_at(step, n_frames),
+            &covs,
+            surface.surface,
+            k,
+            grid,
+            &label,
+        )
+        .with_context(|| format!("frame {step}"))?;
+        frames.push(s.frame);
+    }
+    let gif = out.join("ppoe-seed.gif");
+    let progress = Progress::new("rendering ppoe-seed.gif", n_frames);
+    progress.set(0);
+    picture::write_gif_with_progress(&gif, &frames, &mut |i| progress.set(i + 1))
+        .with_context(|| format!("cannot write {}", gif.display()))?;
+    progress.finish();
+    println!("wrote {} (initial state)", png.display());
+    println!("wrote {} ({n_frames} frames)", gif.display());
+    println!("done in {:.1} s", start.elapsed().as_secs_f64());
+    Ok(())
+}
