@@ -261,23 +261,22 @@ impl<'a, T: Real> ChainRef<'a, T> {
             return Err(Error::LengthMismatch);
         }
         let clip_continuous = convention == Convention::Pytransform3d;
+        // Accumulate in the base frame: Σ_left = Σᵢ Ad(Pᵢ)·covᵢ·Ad(Pᵢ)ᵀ, Pᵢ = D₁…Dᵢ. This
+        // equals the reference's C ← Ad(Dᵢ⁻¹)·C·Ad(Dᵢ⁻¹)ᵀ + covᵢ moved by Ad(Pₙ), needs no
+        // inverse per joint, and each term depends only on Pᵢ, not on the previous sum.
         let mut p = Transform::identity();
         let mut c = Mat6::zeros();
         for ((j, theta), cov) in self.joints.iter().zip(thetas).zip(covs) {
-            let d = j.displacement(j.clip(*theta, clip_continuous));
-            p = p * d;
-            c = d.inverse().transport_covariance(&c) + *cov;
+            p = p * j.displacement(j.clip(*theta, clip_continuous));
+            c += p.transport_covariance(cov);
         }
         let pose = p * self.home;
-        let last = match convention {
-            Convention::Right => self.home.inverse(),
-            Convention::Left => p,
-            Convention::Pytransform3d => self.home,
+        let cov = match convention {
+            Convention::Right => pose.inverse().transport_covariance(&c),
+            Convention::Left => c,
+            Convention::Pytransform3d => (self.home * p.inverse()).transport_covariance(&c),
         };
-        Ok(UncertainPose {
-            pose,
-            cov: last.transport_covariance(&c),
-        })
+        Ok(UncertainPose { pose, cov })
     }
 
     /// The PPOE with input checks: every θ finite, every covariance finite, symmetric and
