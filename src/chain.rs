@@ -112,6 +112,17 @@ pub enum Convention {
     Pytransform3d,
 }
 
+impl<T: Real> UncertainPose<T> {
+    /// A pose without uncertainty (zero covariance).
+    #[inline]
+    pub fn certain(pose: Transform<T>) -> Self {
+        Self {
+            pose,
+            cov: Mat6::zeros(),
+        }
+    }
+}
+
 /// A pose and the covariance of its exponential-coordinate perturbation (rotation
 /// first); the [`Convention`] that produced it says which perturbation.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -122,35 +133,7 @@ pub struct UncertainPose<T> {
     pub cov: Mat6<T>,
 }
 
-impl<T: Real> approx::AbsDiffEq for UncertainPose<T> {
-    type Epsilon = T;
-    fn default_epsilon() -> T {
-        T::default_epsilon()
-    }
-    fn abs_diff_eq(&self, other: &Self, epsilon: T) -> bool {
-        self.pose.abs_diff_eq(&other.pose, epsilon) && self.cov.abs_diff_eq(&other.cov, epsilon)
-    }
-}
-
-impl<T: Real> approx::RelativeEq for UncertainPose<T> {
-    fn default_max_relative() -> T {
-        T::default_max_relative()
-    }
-    fn relative_eq(&self, other: &Self, epsilon: T, max_relative: T) -> bool {
-        self.pose.relative_eq(&other.pose, epsilon, max_relative)
-            && self.cov.relative_eq(&other.cov, epsilon, max_relative)
-    }
-}
-
-impl<T: Real> approx::UlpsEq for UncertainPose<T> {
-    fn default_max_ulps() -> u32 {
-        T::default_max_ulps()
-    }
-    fn ulps_eq(&self, other: &Self, epsilon: T, max_ulps: u32) -> bool {
-        self.pose.ulps_eq(&other.pose, epsilon, max_ulps)
-            && self.cov.ulps_eq(&other.cov, epsilon, max_ulps)
-    }
-}
+crate::linalg::approx_fields!([T: Real] UncertainPose<T> { pose, cov });
 
 /// A chain whose joints live in a slice: the runtime-sized counterpart of [`Chain`]
 /// (used by host tools that load a URDF at run time). Same algorithms, same code path.
@@ -395,10 +378,7 @@ impl<T: Real, const N: usize> Chain<T, N> {
     ) -> UncertainPose<T> {
         self.as_ref()
             .ppoe(thetas, covs, convention)
-            .unwrap_or(UncertainPose {
-                pose: Transform::identity(),
-                cov: Mat6::zeros(),
-            })
+            .unwrap_or_else(|_| UncertainPose::certain(Transform::identity()))
     }
 
     /// The PPOE with input checks (see [`ChainRef::ppoe_checked`]).
@@ -420,10 +400,7 @@ impl<T: Real, const N: usize> Chain<T, N> {
     ) -> UncertainPose<T> {
         self.as_ref()
             .ppoe_fourth_order(thetas, covs, convention)
-            .unwrap_or(UncertainPose {
-                pose: Transform::identity(),
-                cov: Mat6::zeros(),
-            })
+            .unwrap_or_else(|_| UncertainPose::certain(Transform::identity()))
     }
 }
 

@@ -817,70 +817,8 @@ pub fn chi2_3_radius<T: Real>(p: T) -> Option<T> {
     Some(T::lit(hi))
 }
 
-impl<T: Real, const N: usize> approx::AbsDiffEq for SymmetricEigen<T, N> {
-    type Epsilon = T;
-    fn default_epsilon() -> T {
-        T::default_epsilon()
-    }
-    /// Compares values and vectors (not the iteration counters).
-    fn abs_diff_eq(&self, other: &Self, epsilon: T) -> bool {
-        self.values.abs_diff_eq(&other.values, epsilon)
-            && self.vectors.abs_diff_eq(&other.vectors, epsilon)
-    }
-}
-
-impl<T: Real, const N: usize> approx::RelativeEq for SymmetricEigen<T, N> {
-    fn default_max_relative() -> T {
-        T::default_max_relative()
-    }
-    fn relative_eq(&self, other: &Self, epsilon: T, max_relative: T) -> bool {
-        self.values
-            .relative_eq(&other.values, epsilon, max_relative)
-            && self
-                .vectors
-                .relative_eq(&other.vectors, epsilon, max_relative)
-    }
-}
-
-impl<T: Real, const N: usize> approx::UlpsEq for SymmetricEigen<T, N> {
-    fn default_max_ulps() -> u32 {
-        T::default_max_ulps()
-    }
-    fn ulps_eq(&self, other: &Self, epsilon: T, max_ulps: u32) -> bool {
-        self.values.ulps_eq(&other.values, epsilon, max_ulps)
-            && self.vectors.ulps_eq(&other.vectors, epsilon, max_ulps)
-    }
-}
-
-impl<T: Real> approx::AbsDiffEq for LiftSurface<T> {
-    type Epsilon = T;
-    fn default_epsilon() -> T {
-        T::default_epsilon()
-    }
-    fn abs_diff_eq(&self, other: &Self, epsilon: T) -> bool {
-        self.mean.abs_diff_eq(&other.mean, epsilon) && self.basis.abs_diff_eq(&other.basis, epsilon)
-    }
-}
-
-impl<T: Real> approx::RelativeEq for LiftSurface<T> {
-    fn default_max_relative() -> T {
-        T::default_max_relative()
-    }
-    fn relative_eq(&self, other: &Self, epsilon: T, max_relative: T) -> bool {
-        self.mean.relative_eq(&other.mean, epsilon, max_relative)
-            && self.basis.relative_eq(&other.basis, epsilon, max_relative)
-    }
-}
-
-impl<T: Real> approx::UlpsEq for LiftSurface<T> {
-    fn default_max_ulps() -> u32 {
-        T::default_max_ulps()
-    }
-    fn ulps_eq(&self, other: &Self, epsilon: T, max_ulps: u32) -> bool {
-        self.mean.ulps_eq(&other.mean, epsilon, max_ulps)
-            && self.basis.ulps_eq(&other.basis, epsilon, max_ulps)
-    }
-}
+crate::linalg::approx_fields!([T: Real, const N: usize] SymmetricEigen<T, N> { values, vectors });
+crate::linalg::approx_fields!([T: Real] LiftSurface<T> { mean, basis });
 
 #[cfg(test)]
 mod tests {

@@ -622,6 +622,39 @@ macro_rules! approx_impls {
     };
 }
 
+/// `approx` traits for a struct compared field by field (each field already implements
+/// them with `Epsilon = T`).
+macro_rules! approx_fields {
+    ([$($gen:tt)*] $ty:ty { $($f:ident),+ }) => {
+        impl<$($gen)*> approx::AbsDiffEq for $ty {
+            type Epsilon = T;
+            fn default_epsilon() -> T {
+                T::default_epsilon()
+            }
+            fn abs_diff_eq(&self, other: &Self, epsilon: T) -> bool {
+                true $(&& self.$f.abs_diff_eq(&other.$f, epsilon))+
+            }
+        }
+        impl<$($gen)*> approx::RelativeEq for $ty {
+            fn default_max_relative() -> T {
+                T::default_max_relative()
+            }
+            fn relative_eq(&self, other: &Self, epsilon: T, max_relative: T) -> bool {
+                true $(&& self.$f.relative_eq(&other.$f, epsilon, max_relative))+
+            }
+        }
+        impl<$($gen)*> approx::UlpsEq for $ty {
+            fn default_max_ulps() -> u32 {
+                T::default_max_ulps()
+            }
+            fn ulps_eq(&self, other: &Self, epsilon: T, max_ulps: u32) -> bool {
+                true $(&& self.$f.ulps_eq(&other.$f, epsilon, max_ulps))+
+            }
+        }
+    };
+}
+pub(crate) use approx_fields;
+
 fn vec_iter<T, const N: usize>(v: &Vector<T, N>) -> core::slice::Iter<'_, T> {
     v.0.iter()
 }

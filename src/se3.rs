@@ -223,41 +223,7 @@ impl<T: Real> From<Transform<T>> for [[T; 4]; 4] {
     }
 }
 
-impl<T: Real> approx::AbsDiffEq for Transform<T> {
-    type Epsilon = T;
-    fn default_epsilon() -> T {
-        T::default_epsilon()
-    }
-    fn abs_diff_eq(&self, other: &Self, epsilon: T) -> bool {
-        self.rotation.abs_diff_eq(&other.rotation, epsilon)
-            && self.translation.abs_diff_eq(&other.translation, epsilon)
-    }
-}
-
-impl<T: Real> approx::RelativeEq for Transform<T> {
-    fn default_max_relative() -> T {
-        T::default_max_relative()
-    }
-    fn relative_eq(&self, other: &Self, epsilon: T, max_relative: T) -> bool {
-        self.rotation
-            .relative_eq(&other.rotation, epsilon, max_relative)
-            && self
-                .translation
-                .relative_eq(&other.translation, epsilon, max_relative)
-    }
-}
-
-impl<T: Real> approx::UlpsEq for Transform<T> {
-    fn default_max_ulps() -> u32 {
-        T::default_max_ulps()
-    }
-    fn ulps_eq(&self, other: &Self, epsilon: T, max_ulps: u32) -> bool {
-        self.rotation.ulps_eq(&other.rotation, epsilon, max_ulps)
-            && self
-                .translation
-                .ulps_eq(&other.translation, epsilon, max_ulps)
-    }
-}
+crate::linalg::approx_fields!([T: Real] Transform<T> { rotation, translation });
 
 /// The 4×4 matrix form `[[ [ω]×, v ], [0, 0]]` of a twist ξ = (ω, v) (an element of se(3)).
 #[inline]
