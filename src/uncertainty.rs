@@ -189,6 +189,8 @@ pub struct Fusion<T> {
     pub converged: bool,
 }
 
+crate::linalg::approx_fields!([T: Real] Fusion<T> { mean, cov, cost });
+
 /// Information matrix, gradient and cost of the fusion problem at `mean`.
 fn fusion_terms<T: Real>(
     mean: &Transform<T>,
