@@ -262,15 +262,37 @@ impl<'a, T: Real> ChainRef<'a, T> {
         Ok(UncertainPose { pose, cov })
     }
 
-    /// The PPOE with input checks: every θ finite, every covariance finite, symmetric and
-    /// positive semi-definite within tolerance ([`check_covariance`]); then
-    /// [`ChainRef::ppoe`].
+    /// Checks the chain itself: finite screw axes with a unit rotation part (revolute) or
+    /// zero rotation and unit translation part (prismatic) within [`Real::TOL`], limits not
+    /// NaN, and a valid home pose ([`Transform::check`]).
+    pub fn check(&self) -> Result<(), Error> {
+        self.home.check()?;
+        for j in self.joints {
+            if !j.screw.is_finite() || j.lower.is_nan() || j.upper.is_nan() {
+                return Err(Error::NonFinite);
+            }
+            let (w, v) = (j.screw.rotation().norm(), j.screw.translation().norm());
+            let unit = match j.kind {
+                JointKind::Prismatic => w == T::ZERO && (v - T::ONE).abs() <= T::TOL,
+                _ => (w - T::ONE).abs() <= T::TOL,
+            };
+            if !unit {
+                return Err(Error::ZeroAxis);
+            }
+        }
+        Ok(())
+    }
+
+    /// The PPOE with input checks: the chain ([`ChainRef::check`]), every θ finite, every
+    /// covariance finite, symmetric and positive semi-definite within tolerance
+    /// ([`check_covariance`]); then [`ChainRef::ppoe`].
     pub fn ppoe_checked(
         &self,
         thetas: &[T],
         covs: &[Mat6<T>],
         convention: Convention,
     ) -> Result<UncertainPose<T>, Error> {
+        self.check()?;
         if !thetas.iter().all(|t| t.is_finite()) {
             return Err(Error::NonFinite);
         }

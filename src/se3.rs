@@ -271,12 +271,10 @@ pub fn curly_hat<T: Real>(xi: &Vec6<T>) -> Mat6<T> {
 #[inline]
 pub fn exp<T: Real>(xi: &Vec6<T>) -> Transform<T> {
     let w = xi.rotation();
-    let k = so3::ExpCoefficients::new(w.norm());
-    let rotation = so3::i_plus_aw_bw2(&w, k.a, k.b);
-    let j = so3::i_plus_aw_bw2(&w, k.b, k.c);
+    let parts = so3::ExpParts::new(&w);
     Transform {
-        rotation,
-        translation: j * xi.translation(),
+        rotation: parts.rotation(),
+        translation: parts.jacobian() * xi.translation(),
     }
 }
 

@@ -28,52 +28,61 @@ pub fn vee<T: Real>(m: &Mat3<T>) -> Vec3<T> {
     ])
 }
 
-/// The coefficients of the SO(3)/SE(3) exponential for angle `t = ‖ω‖`:
-/// `a = sin t / t`, `b = (1 − cos t)/t²`, `c = (t − sin t)/t³`.
+/// The SO(3)/SE(3) exponential of ω = t·u in the form `I + a·[x]× + b·[x]×²`, for the
+/// rotation `Exp(ω)` and for the left Jacobian `J(ω)`.
 ///
-/// Below [`Real::SERIES`] the Taylor series to t⁴ is used (truncation < ε); above, the
-/// closed forms, whose cancellation error in `b` and `c` is ≈ ε/t² relative, i.e. ε
-/// absolute once multiplied by the t² of `W²`.
+/// Below [`Real::SERIES`]: x = ω with the Taylor series to t⁴ (truncation < ε) of
+/// `sin t/t`, `(1 − cos t)/t²`, `(t − sin t)/t³`. Above: x = u (unit axis) with
+/// `sin t`, `1 − cos t` and `(1 − cos t)/t`, `(t − sin t)/t`, which never overflow, even
+/// for angles whose square does (f32 beyond 10¹⁹). Cancellation in `1 − cos t` and
+/// `t − sin t` near the cut-off costs ≈ ε/t² relative, i.e. ε absolute.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct ExpCoefficients<T> {
-    pub a: T,
-    pub b: T,
-    pub c: T,
+pub(crate) struct ExpParts<T> {
+    x: Vec3<T>,
+    ra: T,
+    rb: T,
+    ja: T,
+    jb: T,
 }
 
-impl<T: Real> ExpCoefficients<T> {
+impl<T: Real> ExpParts<T> {
     #[inline]
-    pub(crate) fn new(t: T) -> Self {
-        let t2 = t * t;
+    pub(crate) fn new(w: &Vec3<T>) -> Self {
+        let t = w.norm();
         if t < T::SERIES {
+            let t2 = t * t;
             let t4 = t2 * t2;
+            let b = T::HALF - t2 / T::lit(24.0) + t4 / T::lit(720.0);
             Self {
-                a: T::ONE - t2 / T::lit(6.0) + t4 / T::lit(120.0),
-                b: T::HALF - t2 / T::lit(24.0) + t4 / T::lit(720.0),
-                c: T::lit(1.0 / 6.0) - t2 / T::lit(120.0) + t4 / T::lit(5040.0),
+                x: *w,
+                ra: T::ONE - t2 / T::lit(6.0) + t4 / T::lit(120.0),
+                rb: b,
+                ja: b,
+                jb: T::lit(1.0 / 6.0) - t2 / T::lit(120.0) + t4 / T::lit(5040.0),
             }
         } else {
             let (s, c) = t.sin_cos_r();
+            let omc = T::ONE - c;
             Self {
-                a: s / t,
-                b: (T::ONE - c) / t2,
-                c: (t - s) / (t2 * t),
+                x: w.map(|v| v / t),
+                ra: s,
+                rb: omc,
+                ja: omc / t,
+                jb: (t - s) / t,
             }
         }
     }
-}
 
-/// The coefficient `d = (1 − (t/2)·cot(t/2)) / t²` of `W²` in the inverse left Jacobian.
-/// Series `1/12 + t²/720 + t⁴/30240` below [`Real::SERIES`]. Finite for t ∈ [0, 2π).
-#[inline]
-pub(crate) fn jinv_coefficient<T: Real>(t: T) -> T {
-    let t2 = t * t;
-    if t < T::SERIES {
-        T::lit(1.0 / 12.0) + t2 / T::lit(720.0) + t2 * t2 / T::lit(30240.0)
-    } else {
-        let half = t * T::HALF;
-        let (s, c) = half.sin_cos_r();
-        (T::ONE - half * c / s) / t2
+    /// `Exp(ω)`.
+    #[inline]
+    pub(crate) fn rotation(&self) -> Mat3<T> {
+        i_plus_aw_bw2(&self.x, self.ra, self.rb)
+    }
+
+    /// The left Jacobian `J(ω)`.
+    #[inline]
+    pub(crate) fn jacobian(&self) -> Mat3<T> {
+        i_plus_aw_bw2(&self.x, self.ja, self.jb)
     }
 }
 
@@ -98,8 +107,7 @@ pub(crate) fn i_plus_aw_bw2<T: Real>(w: &Vec3<T>, a: T, b: T) -> Mat3<T> {
 /// are periodic). Non-finite input gives non-finite output.
 #[inline]
 pub fn exp<T: Real>(w: &Vec3<T>) -> Mat3<T> {
-    let k = ExpCoefficients::new(w.norm());
-    i_plus_aw_bw2(w, k.a, k.b)
+    ExpParts::new(w).rotation()
 }
 
 /// Logarithm as unit axis and angle: `R = Exp(angle · axis)` with angle ∈ [0, π].
@@ -126,7 +134,14 @@ pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
         return (x_axis, angle);
     }
     if T::PI() - angle >= T::NEAR_PI {
-        return (r.scale(T::ONE / rn), angle);
+        let inv = T::ONE / rn;
+        if inv.is_finite() {
+            return (r.scale(inv), angle);
+        }
+        // A subnormal skew part: 1/‖r‖ overflows, so normalise by division instead.
+        let m = r.amax();
+        let rs = r.map(|x| x / m);
+        return (rs.scale(T::ONE / rs.norm()), angle);
     }
     // Near π: uᵢ² ≈ (Sᵢᵢ + 1)/2 from the symmetric part S (exact at π, bias δ²/4 at
     // π − δ), signs from the row of the largest component: pytransform3d's formula,
@@ -173,8 +188,7 @@ pub fn log<T: Real>(rot: &Mat3<T>) -> Vec3<T> {
 /// Corresponds to pytransform3d's `left_jacobian_SO3`; series below [`Real::SERIES`].
 #[inline]
 pub fn left_jacobian<T: Real>(w: &Vec3<T>) -> Mat3<T> {
-    let k = ExpCoefficients::new(w.norm());
-    i_plus_aw_bw2(w, k.b, k.c)
+    ExpParts::new(w).jacobian()
 }
 
 /// Inverse left Jacobian of SO(3): `J⁻¹(ω) = I − ½W + ((1 − (θ/2)cot(θ/2))/θ²)·W²`.
@@ -183,8 +197,18 @@ pub fn left_jacobian<T: Real>(w: &Vec3<T>) -> Mat3<T> {
 /// Singular (infinite) at θ = 2π·k, k ≠ 0; finite for θ < 2π.
 #[inline]
 pub fn left_jacobian_inv<T: Real>(w: &Vec3<T>) -> Mat3<T> {
-    let d = jinv_coefficient(w.norm());
-    i_plus_aw_bw2(w, -T::HALF, d)
+    let t = w.norm();
+    if t < T::SERIES {
+        // (1 − (t/2)·cot(t/2))/t² = 1/12 + t²/720 + t⁴/30240 + …
+        let t2 = t * t;
+        let d = T::lit(1.0 / 12.0) + t2 / T::lit(720.0) + t2 * t2 / T::lit(30240.0);
+        i_plus_aw_bw2(w, -T::HALF, d)
+    } else {
+        // Unit-axis form: no t² that could overflow.
+        let half = t * T::HALF;
+        let (s, c) = half.sin_cos_r();
+        i_plus_aw_bw2(&w.map(|v| v / t), -half, T::ONE - half * c / s)
+    }
 }
 
 /// `true` if `rot` is a rotation within tolerance `tol`: finite, `‖RᵀR − I‖_max ≤ tol` and

@@ -222,8 +222,10 @@ fn fusion_terms<T: Real>(
 /// update earlier; at convergence they agree).
 ///
 /// Errors: [`Error::Empty`] for no poses or `means.len() != covs.len()`,
-/// [`Error::NonFinite`], [`Error::Singular`] if a covariance or the information matrix
-/// is not positive definite. Holds at most 16 poses (their information matrices live on
+/// [`Error::NonFinite`], [`Error::NotARotation`] ([`Transform::check`]),
+/// [`Error::NotSymmetric`] / [`Error::NotPositiveSemidefinite`] ([`check_covariance`]),
+/// [`Error::Singular`] if a covariance or the information matrix is not positive
+/// definite. Holds at most 16 poses (their information matrices live on
 /// the stack); more give [`Error::BufferTooSmall`].
 pub fn pose_fusion<T: Real>(
     means: &[Transform<T>],
@@ -239,9 +241,8 @@ pub fn pose_fusion<T: Real>(
     }
     let mut infos = heapless::Vec::<Mat6<T>, MAX_POSES>::new();
     for (m, c) in means.iter().zip(covs.iter()) {
-        if !c.is_finite() || !m.rotation.is_finite() || !m.translation.is_finite() {
-            return Err(Error::NonFinite);
-        }
+        m.check()?;
+        check_covariance(c)?;
         let w = c.inverse_spd().ok_or(Error::Singular)?;
         infos.push(w).map_err(|_| Error::BufferTooSmall)?;
     }
@@ -399,9 +400,14 @@ pub fn frechet_mean<T: Real, G: LieGroup<T, D>, const D: usize>(
         let d = mean.right_difference(s) - avg;
         cov += d.outer(&d);
     }
+    let cov = cov.scale(T::ONE / (n - T::ONE)).symmetrize();
+    if !cov.is_finite() || !mean.is_finite() {
+        // Finite samples so large that their differences overflow.
+        return Err(Error::NonFinite);
+    }
     Ok(Estimate {
         mean,
-        cov: cov.scale(T::ONE / (n - T::ONE)).symmetrize(),
+        cov,
         iterations,
         converged,
     })

@@ -352,3 +352,23 @@ proptest! {
         transport_matches_dense::<f64>(a, c1);
     }
 }
+
+/// Found by fuzzing (fuzz/artifacts-found): a rotation with a subnormal skew part made the
+/// axis 1/‖r‖ overflow; huge f32 angles overflowed t² in exp.
+#[test]
+fn extreme_but_finite_inputs_give_finite_results() {
+    let xi = Vec6::<f64>::from([5e-324, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    let log = se3::log(&se3::exp(&xi));
+    assert!(log.is_finite(), "{log:?}");
+    let w = Vec3::<f32>::new(1e-45, 0.0, 0.0);
+    assert!(so3::log(&so3::exp(&w)).is_finite());
+    for t in [1e19f32, 1e30, 3e38] {
+        let xi = Vec6::<f32>::from([t, 0.0, 0.0, 0.0, 1.0, 0.0]);
+        let e = se3::exp(&xi);
+        assert!(
+            e.rotation.is_finite() && e.translation.is_finite(),
+            "exp({t})"
+        );
+        assert!(so3::left_jacobian_inv(&xi.rotation()).is_finite() || t > 1e38);
+    }
+}

@@ -1,0 +1,121 @@
+//! The `urdf` oracle: parse, extract chains, generate tables, evaluate the PPOE.
+
+use ppoe::chain::{ChainRef, Convention, Joint};
+use ppoe::linalg::Mat6;
+use ppoe_build::codegen::{self, Scalar, Source};
+use ppoe_build::Urdf;
+
+/// Maximum number of (base, tip) pairs tried per input.
+pub const MAX_PAIRS: usize = 8;
+/// Inputs with more links than this are parsed but no chain is extracted (bounds the
+/// work per input: chain extraction is O(path²)).
+pub const MAX_LINKS: usize = 2000;
+
+/// `str_lit` of ppoe-build's codegen: how a name appears in the generated source.
+pub fn str_lit(s: &str) -> String {
+    let mut out = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            ' '..='~' => out.push(c),
+            _ => out.push_str(&format!("\\u{{{:x}}}", c as u32)),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// The body of the `urdf` target.
+pub fn run(data: &[u8]) {
+    let Ok(urdf) = Urdf::parse_bytes(data) else {
+        return;
+    };
+    if urdf.links.len() > MAX_LINKS || urdf.links.is_empty() {
+        return;
+    }
+    let n = urdf.links.len();
+    // Pairs: (first link, every other link) and (every link, last link), bounded; a
+    // deterministic spread over the rest from the input's length.
+    let mut pairs: Vec<(usize, usize)> = Vec::new();
+    for i in 1..n.min(MAX_PAIRS / 2 + 1) {
+        pairs.push((0, i));
+    }
+    pairs.push((0, n - 1));
+    pairs.push((n / 2, n - 1));
+    pairs.push((n - 1, 0));
+    pairs.push((data.len() % n, (data.len() / 7) % n));
+    pairs.truncate(MAX_PAIRS + 2);
+    let source = Source {
+        file_name: "fuzz.urdf".into(),
+        sha256: codegen::sha256_hex(data),
+    };
+    for (b, t) in pairs {
+        let (base, tip) = (urdf.links[b].name.as_str(), urdf.links[t].name.as_str());
+        let Ok(chain) = urdf.chain::<&str>(base, tip, None) else {
+            continue;
+        };
+        assert!(!chain.joints.is_empty(), "chain with no joints: {chain:?}");
+        // The same chain with the joints listed explicitly.
+        let names = chain.joint_names();
+        let again = urdf.chain(base, tip, Some(&names));
+        assert_eq!(again.as_ref(), Ok(&chain), "explicit joint list gives another chain");
+        // Codegen: f64 always works; the f32 table iff the geometry fits in f32.
+        let text = codegen::generate(&chain, "FUZZ", Scalar::F64, &source)
+            .unwrap_or_else(|e| panic!("codegen::generate (f64) failed on an Ok chain: {e}"));
+        for j in &chain.joints {
+            let lit = str_lit(&j.name);
+            assert!(text.contains(&lit), "generated text lacks joint name {lit}:\n{text}");
+        }
+        assert!(text.contains(&format!("ppoe::chain::Chain<f64, {}>", chain.joints.len())));
+        assert_eq!(text.matches("ppoe::chain::Joint::new(").count(), chain.joints.len());
+        let fits = chain
+            .joints
+            .iter()
+            .flat_map(|j| j.screw.iter())
+            .chain(chain.home.iter().flatten())
+            .all(|&x| (x as f32).is_finite());
+        let both = codegen::generate(&chain, "FUZZ", Scalar::Both, &source);
+        assert_eq!(both.is_ok(), fits, "Scalar::Both: {both:?}");
+        // Runtime chain (names not leaked: the core does not need them).
+        let joints: Vec<Joint<f64>> = chain
+            .joints
+            .iter()
+            .map(|j| Joint::new("", j.kind, j.screw, j.lower, j.upper))
+            .collect();
+        let home = chain.home_transform();
+        assert!(
+            home.translation.is_finite() && home.rotation.is_finite(),
+            "home pose not finite: {home:?}"
+        );
+        let rchain = ChainRef { joints: &joints, home };
+        let zeros = vec![0.0; joints.len()];
+        let covs = vec![Mat6::<f64>::identity() * 1e-4; joints.len()];
+        // "Finite geometry": every screw and home value within 1e100 (larger ones may
+        // overflow the covariance transport, which squares the translations).
+        let moderate = chain
+            .joints
+            .iter()
+            .flat_map(|j| j.screw.iter())
+            .chain(chain.home.iter().flatten())
+            .all(|x| x.abs() <= 1e100);
+        for conv in [Convention::Right, Convention::Left] {
+            let out = rchain
+                .ppoe_checked(&zeros, &covs, conv)
+                .unwrap_or_else(|e| panic!("ppoe_checked on zero joint values: {e}"));
+            if moderate {
+                assert!(
+                    out.pose.translation.is_finite() && out.pose.rotation.is_finite(),
+                    "PPOE pose not finite: {out:?}"
+                );
+                assert!(out.cov.is_finite(), "PPOE covariance not finite: {out:?}");
+            }
+        }
+        // Forward kinematics at 0 is the home pose when 0 is within every joint's limits
+        // (Exp(0) = I exactly).
+        let fk = rchain.forward_kinematics(&zeros).expect("lengths match");
+        if joints.iter().all(|j| j.lower <= 0.0 && 0.0 <= j.upper) {
+            assert_eq!(fk, home, "FK(0) != M");
+        }
+    }
+}

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Long fuzzing run: every target for FUZZ_SECONDS (default 3600 = 1 h) from a temporary
+# copy of the seed corpus, then one line per target appended to the table at the end of
+# FUZZING.md (date, target, seconds, executions, crashes). Fails on any crash (the table
+# then records the crash count 1 for that target; see fuzz/artifacts/<target>/).
+#
+#   scripts/fuzz-long.sh
+#   FUZZ_SECONDS=600 FUZZ_TARGETS="core_f64" scripts/fuzz-long.sh
+set -uo pipefail
+
+export FUZZ_SECONDS="${FUZZ_SECONDS:-3600}"
+root="$(cd "$(dirname "$0")/.." && pwd)"
+summary="$(mktemp "${TMPDIR:-/tmp}/ppoe-fuzz-summary.XXXXXX")"
+trap 'rm -f "$summary"' EXIT
+
+FUZZ_SUMMARY="$summary" "$root/scripts/fuzz-smoke.sh"
+status=$?
+
+day="$(date -u +%Y-%m-%d)"
+while read -r target execs rc; do
+    crashes=0
+    [ "$rc" -ne 0 ] && crashes=1
+    printf '| %s | %s | %s | %s | %s |\n' "$day" "$target" "$FUZZ_SECONDS" "$execs" "$crashes" \
+        >>"$root/FUZZING.md"
+done <"$summary"
+exit $status

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Runs every fuzz target for a short fixed time from a temporary copy of the committed
+# seed corpus (fuzz/corpus/<target>); fails on any crash. See FUZZING.md.
+#
+#   scripts/fuzz-smoke.sh                 # 30 s per target
+#   FUZZ_SECONDS=60 scripts/fuzz-smoke.sh
+#   FUZZ_TARGETS="urdf eigen" scripts/fuzz-smoke.sh
+#
+# Crash inputs are kept in fuzz/artifacts/<target>/. Prints the executions per target.
+set -euo pipefail
+
+FUZZ_SECONDS="${FUZZ_SECONDS:-30}"
+FUZZ_TARGETS="${FUZZ_TARGETS:-urdf core_f64 core_f32 eigen}"
+FUZZ_MAX_LEN="${FUZZ_MAX_LEN:-65536}"
+FUZZ_SUMMARY="${FUZZ_SUMMARY:-}" # if set, "target executions" lines are appended to it
+
+root="$(cd "$(dirname "$0")/.." && pwd)"
+cd "$root/fuzz"
+
+if ! cargo fuzz --version >/dev/null 2>&1; then
+    echo "fuzz: installing cargo-fuzz" >&2
+    cargo install cargo-fuzz --locked
+fi
+if ! rustup run nightly rustc --version >/dev/null 2>&1; then
+    echo "fuzz: the nightly toolchain is needed (rustup toolchain install nightly)" >&2
+    exit 2
+fi
+
+start=$(date +%s)
+cargo +nightly fuzz build
+
+work="$(mktemp -d "${TMPDIR:-/tmp}/ppoe-fuzz.XXXXXX")"
+trap 'rm -rf "$work"' EXIT
+
+status=0
+printf '%-10s %14s %8s %s\n' target executions seconds result
+for target in $FUZZ_TARGETS; do
+    mkdir -p "$work/$target" "artifacts/$target"
+    cp -R "corpus/$target/." "$work/$target/"
+    log="$work/$target.log"
+    t0=$(date +%s)
+    set +e
+    cargo +nightly fuzz run "$target" "$work/$target" -- \
+        -max_total_time="$FUZZ_SECONDS" -max_len="$FUZZ_MAX_LEN" -timeout=30 \
+        -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="artifacts/$target/" \
+        >"$log" 2>&1
+    rc=$?
+    set -e
+    t1=$(date +%s)
+    execs=$(grep -E '^stat::number_of_executed_units:' "$log" | tail -1 | awk '{print $2}')
+    execs="${execs:-0}"
+    if [ "$rc" -eq 0 ]; then
+        result="ok"
+    else
+        result="CRASH (exit $rc)"
+        status=1
+        echo "---- $target: last 60 lines of the log ----" >&2
+        tail -60 "$log" >&2
+        ls -1 "artifacts/$target" >&2 || true
+    fi
+    printf '%-10s %14s %8s %s\n' "$target" "$execs" "$((t1 - t0))" "$result"
+    if [ -n "$FUZZ_SUMMARY" ]; then
+        echo "$target $execs $rc" >>"$FUZZ_SUMMARY"
+    fi
+done
+echo "total: $(( $(date +%s) - start )) s"
+exit $status
