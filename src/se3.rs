@@ -115,26 +115,45 @@ impl<T: Real> Transform<T> {
     /// the result is exactly symmetric. Σ is assumed symmetric.
     #[inline]
     pub fn transport_covariance(&self, cov: &Mat6<T>) -> Mat6<T> {
-        let r = &self.rotation;
-        // Rotate: A' = R A Rᵀ, B' = R B Rᵀ, D' = R D Rᵀ (A, D symmetric).
-        let a = sym_sandwich(r, &cov.block(0, 0));
-        let b = *r * cov.block(0, 1) * r.transpose();
-        let d = sym_sandwich(r, &cov.block(1, 1));
-        // Shear: [[A', A'Pᵀ + B'], [P A' + B'ᵀ, P A' Pᵀ + P B' + B'ᵀ Pᵀ + D']].
-        let p = &self.translation;
-        let pa = cross_columns(p, &a); // P A'
-        let e = pa + b.transpose(); // lower-left block
-        let x = cross_columns(p, &b); // P B'
-        let papt = cross_columns(p, &pa.transpose()); // P (P A')ᵀ = P A' Pᵀ (A' symmetric)
-        let mut lr = Mat3::zeros();
+        let r = &self.rotation.0;
+        let p = &self.translation.0;
+        let c = &cov.0;
+        let block = |bi: usize, bj: usize| -> [[T; 3]; 3] {
+            core::array::from_fn(|i| core::array::from_fn(|j| c[bi + i][bj + j]))
+        };
+        // Rotate the blocks: A' = R A Rᵀ, B' = R B Rᵀ, D' = R D Rᵀ.
+        let a = sandwich(r, &block(0, 0), true);
+        let b = sandwich(r, &block(0, 3), false);
+        let d = sandwich(r, &block(3, 3), true);
+        // Shear by [[I, 0], [P, I]], P = [p]×: E = P·A' + B'ᵀ is the lower-left block and
+        // P·A'·Pᵀ + P·B' + B'ᵀ·Pᵀ + D' = E·Pᵀ + P·B' + D' the lower-right one.
+        let mut out = [[T::ZERO; 6]; 6];
+        let mut e = [[T::ZERO; 3]; 3];
         for i in 0..3 {
-            for j in 0..=i {
-                let v = papt.0[i][j] + x.0[i][j] + x.0[j][i] + d.0[i][j];
-                lr.0[i][j] = v;
-                lr.0[j][i] = v;
+            for j in 0..3 {
+                e[i][j] = cross_component(p, [a[0][j], a[1][j], a[2][j]], i) + b[j][i];
             }
         }
-        Mat6::from_blocks(&a, &e.transpose(), &e, &lr)
+        for i in 0..3 {
+            for j in 0..3 {
+                out[i][j] = a[i][j];
+                out[3 + i][j] = e[i][j];
+                out[j][3 + i] = e[i][j];
+            }
+        }
+        for i in 0..3 {
+            for j in 0..3 {
+                // Lower triangle computed, mirrored: exactly symmetric.
+                if j <= i {
+                    let v = cross_component(p, e[i], j)
+                        + cross_component(p, [b[0][j], b[1][j], b[2][j]], i)
+                        + d[i][j];
+                    out[3 + i][3 + j] = v;
+                    out[3 + j][3 + i] = v;
+                }
+            }
+        }
+        Matrix(out)
     }
 
     /// The exponential map of exponential coordinates ξ = (ω, v), rotation first.
@@ -170,33 +189,39 @@ impl<T: Real> Transform<T> {
     }
 }
 
-/// `R·A·Rᵀ` for symmetric A: the lower triangle computed, mirrored (exactly symmetric).
-#[inline]
-fn sym_sandwich<T: Real>(r: &Mat3<T>, a: &Mat3<T>) -> Mat3<T> {
-    let ra = *r * *a;
-    let mut out = Mat3::zeros();
+/// `R·X·Rᵀ` on plain arrays (the constant loop bounds let the optimiser unroll it); for
+/// symmetric X the lower triangle is computed and mirrored, so the result is exactly
+/// symmetric.
+#[inline(always)]
+fn sandwich<T: Real>(r: &[[T; 3]; 3], x: &[[T; 3]; 3], symmetric: bool) -> [[T; 3]; 3] {
+    let mut rx = [[T::ZERO; 3]; 3];
     for i in 0..3 {
-        for j in 0..=i {
-            let v = Vector(ra.0[i]).dot(&Vector(r.0[j]));
-            out.0[i][j] = v;
-            out.0[j][i] = v;
+        for j in 0..3 {
+            rx[i][j] = r[i][0] * x[0][j] + r[i][1] * x[1][j] + r[i][2] * x[2][j];
         }
+    }
+    let mut out = [[T::ZERO; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            if !symmetric || j <= i {
+                out[i][j] = rx[i][0] * r[j][0] + rx[i][1] * r[j][1] + rx[i][2] * r[j][2];
+            }
+        }
+    }
+    if symmetric {
+        (out[0][1], out[0][2], out[1][2]) = (out[1][0], out[2][0], out[2][1]);
     }
     out
 }
 
-/// `[p]× · M`: the cross product of p with every column of M.
-#[inline]
-fn cross_columns<T: Real>(p: &Vec3<T>, m: &Mat3<T>) -> Mat3<T> {
-    let [x, y, z] = p.0;
-    let mut out = Mat3::zeros();
-    for j in 0..3 {
-        let (c0, c1, c2) = (m.0[0][j], m.0[1][j], m.0[2][j]);
-        out.0[0][j] = y * c2 - z * c1;
-        out.0[1][j] = z * c0 - x * c2;
-        out.0[2][j] = x * c1 - y * c0;
+/// Component `i` of `p × x`.
+#[inline(always)]
+fn cross_component<T: Real>(p: &[T; 3], x: [T; 3], i: usize) -> T {
+    match i {
+        0 => p[1] * x[2] - p[2] * x[1],
+        1 => p[2] * x[0] - p[0] * x[2],
+        _ => p[0] * x[1] - p[1] * x[0],
     }
-    out
 }
 
 impl<T: Real> core::ops::Mul for Transform<T> {
