@@ -4,7 +4,7 @@
 
 mod baseline_nalgebra;
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, BenchmarkId, Criterion};
 use ppoe::chain::{ChainRef, Convention, Joint, JointKind};
 use ppoe::ellipsoid::{self, Surface};
 use ppoe::uncertainty::{self, IterationOptions, Order};
@@ -250,5 +250,164 @@ fn all(c: &mut Criterion) {
     ppoe_ops::<f32>(c);
 }
 
+// ---- Deterministic instruction counts (callgrind) ------------------------------------------
+//
+// `PPOE_CALLGRIND=<op>/<f32|f64> PPOE_CALLGRIND_REPS=<k> valgrind --tool=callgrind
+// --collect-atstart=no --toggle-collect='*callgrind_region*' <this bench binary>` runs one op
+// k times inside `callgrind_region` and nothing else is counted; `PPOE_CALLGRIND=list` prints
+// the op names. The calls go through a `&mut dyn FnMut()`: the op `empty` measures that
+// overhead (scripts/bench-report.sh subtracts it).
+
+type Op = (String, Box<dyn FnMut()>);
+
+#[inline(never)]
+fn callgrind_region(reps: usize, f: &mut dyn FnMut()) {
+    for _ in 0..reps {
+        f();
+    }
+}
+
+fn op<R>(name: String, mut f: impl FnMut() -> R + 'static) -> Op {
+    (
+        name,
+        Box::new(move || {
+            black_box(f());
+        }),
+    )
+}
+
+fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
+    let t = ty::<T>();
+    let xi = Vector([0.3, -0.2, 0.5, 0.4, 0.1, -0.3].map(T::lit));
+    let tr = se3::exp(&xi);
+    let tr2 = se3::exp(&Vector([-0.6, 0.1, 0.2, 0.0, 0.7, 0.2].map(T::lit)));
+    let cov = Mat6::from_diagonal(&Vector([1e-3, 2e-3, 5e-4, 1e-3, 3e-3, 2e-3].map(T::lit)));
+    let g = golden_seed();
+    let (joints, home) = seed_chain::<T>(&g);
+    let (thetas, covs) = seed_inputs::<T>();
+    let na = baseline_nalgebra::NaChain {
+        screws: joints
+            .iter()
+            .map(|j| nalgebra::Vector6::from_column_slice(&j.screw.0))
+            .collect(),
+        home: nalgebra::Matrix4::from_fn(|i, j| home.to_matrix4()[i][j]),
+        lower: joints.iter().map(|j| j.lower).collect(),
+        upper: joints.iter().map(|j| j.upper).collect(),
+    };
+    let na_covs: Vec<nalgebra::Matrix6<T>> = covs
+        .iter()
+        .map(|m| nalgebra::Matrix6::from_fn(|i, j| m.0[i][j]))
+        .collect();
+    let tip = ChainRef {
+        joints: &joints,
+        home,
+    }
+    .ppoe(&thetas, &covs, Convention::Right)
+    .unwrap();
+    let mut v: Vec<Op> = vec![
+        op(format!("empty/{t}"), || ()),
+        op(format!("so3_exp/{t}"), move || {
+            so3::exp(black_box(&xi.rotation()))
+        }),
+        op(format!("so3_log/{t}"), move || {
+            so3::log(black_box(&tr.rotation))
+        }),
+        op(format!("se3_exp/{t}"), move || se3::exp(black_box(&xi))),
+        op(format!("se3_log/{t}"), move || se3::log(black_box(&tr))),
+        op(format!("adjoint/{t}"), move || black_box(&tr).adjoint()),
+        op(format!("se3_left_jacobian/{t}"), move || {
+            se3::left_jacobian(black_box(&xi))
+        }),
+        op(format!("se3_left_jacobian_inv/{t}"), move || {
+            se3::left_jacobian_inv(black_box(&xi))
+        }),
+        op(format!("concat_globally_2nd/{t}"), move || {
+            uncertainty::concat_globally(black_box(&tr), &cov, &tr2, &cov, Order::Second)
+        }),
+        op(format!("concat_globally_4th/{t}"), move || {
+            uncertainty::concat_globally(black_box(&tr), &cov, &tr2, &cov, Order::Fourth)
+        }),
+        op(format!("concat_locally/{t}"), move || {
+            uncertainty::concat_locally(black_box(&tr), &tr2, &cov, &cov)
+        }),
+        op(format!("invert/{t}"), move || {
+            uncertainty::invert(black_box(&tr), &cov)
+        }),
+    ];
+    let means = [
+        tr,
+        tr * se3::exp(&Vector([0.01, 0.0, -0.02, 0.01, 0.0, 0.02].map(T::lit))),
+        tr2 * tr,
+    ];
+    v.push(op(format!("pose_fusion_k3/{t}"), move || {
+        uncertainty::pose_fusion(black_box(&means), &[cov; 3], &IterationOptions::default())
+    }));
+    let (j1, j2) = (joints.clone(), joints.clone());
+    v.push(op(format!("ppoe_seed/ours/{t}"), move || {
+        let chain = ChainRef { joints: &j1, home };
+        chain.ppoe(black_box(&thetas), &covs, Convention::Right)
+    }));
+    v.push(op(format!("ppoe_seed/ours_4th_order/{t}"), move || {
+        let chain = ChainRef { joints: &j2, home };
+        chain.ppoe_fourth_order(black_box(&thetas), &covs, Convention::Right)
+    }));
+    v.push(op(format!("ppoe_seed/nalgebra/{t}"), move || {
+        baseline_nalgebra::ppoe(&na, black_box(&thetas), &na_covs)
+    }));
+    for n in [1usize, 2, 4, 8, 16, 32] {
+        let (js, home, th, cv) = synthetic::<T>(n);
+        v.push(op(format!("ppoe_chain/{t}/{n}"), move || {
+            let ch = ChainRef { joints: &js, home };
+            ch.ppoe(black_box(&th), &cv, Convention::Right)
+        }));
+    }
+    for n in [20usize, 50] {
+        for (name, s) in [
+            ("lift", Surface::Lift),
+            ("pytransform3d", Surface::Pytransform3d),
+        ] {
+            let mut buf = vec![Vec3::<T>::zeros(); 2500];
+            v.push(op(format!("surface_{name}_n{n}/{t}"), move || {
+                ellipsoid::surface_grid(s, black_box(&tip.pose), &tip.cov, T::ONE, n, &mut buf)
+                    .is_ok()
+            }));
+        }
+    }
+    v
+}
+
+/// The callgrind mode (see above); `false` if `PPOE_CALLGRIND` is not set.
+fn callgrind_mode() -> bool {
+    let Ok(which) = std::env::var("PPOE_CALLGRIND") else {
+        return false;
+    };
+    let reps: usize = std::env::var("PPOE_CALLGRIND_REPS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1000);
+    let mut ops = callgrind_ops::<f64>();
+    ops.extend(callgrind_ops::<f32>());
+    if which == "list" {
+        for (name, _) in &ops {
+            println!("{name}");
+        }
+        return true;
+    }
+    let Some((_, f)) = ops.iter_mut().find(|(n, _)| *n == which) else {
+        eprintln!("PPOE_CALLGRIND: unknown op {which} (PPOE_CALLGRIND=list lists them)");
+        std::process::exit(2);
+    };
+    f(); // warm (lazy statics, first-touch): not counted
+    callgrind_region(reps, f.as_mut());
+    true
+}
+
 criterion_group!(benches, all);
-criterion_main!(benches);
+
+fn main() {
+    if callgrind_mode() {
+        return;
+    }
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+}

@@ -14,7 +14,7 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use panic_semihosting as _;
 use ppoe::chain::{Convention, UncertainPose};
-use ppoe::{Mat6, Matrix};
+use ppoe::{se3, uncertainty, Mat6, Matrix, Real, Transform, Vec6, Vector};
 
 // SEED: Chain<f64, 6> and SEED_F32: Chain<f32, 6>, generated from the URDF by ppoe-build.
 include!(concat!(env!("OUT_DIR"), "/seed_table.rs"));
@@ -46,6 +46,86 @@ pub fn ppoe_seed_f64(thetas: &[f64; 6], covs: &[Mat6<f64>; 6]) -> UncertainPose<
 #[no_mangle]
 pub fn ppoe_seed_f32(thetas: &[f32; 6], covs: &[Mat6<f32>; 6]) -> UncertainPose<f32> {
     SEED_F32.ppoe(thetas, covs, Convention::Right)
+}
+
+/// `se3::exp` in f64 / f32 as symbols of their own (instruction counts only).
+#[inline(never)]
+#[no_mangle]
+pub fn ppoe_exp_f64(xi: &Vec6<f64>) -> Transform<f64> {
+    se3::exp(xi)
+}
+
+#[inline(never)]
+#[no_mangle]
+pub fn ppoe_exp_f32(xi: &Vec6<f32>) -> Transform<f32> {
+    se3::exp(xi)
+}
+
+/// `se3::log` in f64 / f32 (instruction counts only).
+#[inline(never)]
+#[no_mangle]
+pub fn ppoe_log_f64(t: &Transform<f64>) -> Vec6<f64> {
+    se3::log(t)
+}
+
+#[inline(never)]
+#[no_mangle]
+pub fn ppoe_log_f32(t: &Transform<f32>) -> Vec6<f32> {
+    se3::log(t)
+}
+
+/// `uncertainty::concat_globally`, second order, f64 / f32 (instruction counts only).
+#[inline(never)]
+#[no_mangle]
+pub fn ppoe_concat_f64(
+    a: &Transform<f64>,
+    ca: &Mat6<f64>,
+    b: &Transform<f64>,
+    cb: &Mat6<f64>,
+) -> (Transform<f64>, Mat6<f64>) {
+    uncertainty::concat_globally(a, ca, b, cb, uncertainty::Order::Second)
+}
+
+#[inline(never)]
+#[no_mangle]
+pub fn ppoe_concat_f32(
+    a: &Transform<f32>,
+    ca: &Mat6<f32>,
+    b: &Transform<f32>,
+    cb: &Mat6<f32>,
+) -> (Transform<f32>, Mat6<f32>) {
+    uncertainty::concat_globally(a, ca, b, cb, uncertainty::Order::Second)
+}
+
+/// Cost of the small ops (exp, log, second-order concat) in one scalar type: SysTick ticks
+/// for `REPS` = 64 calls each, `[exp, log, concat]`; under -icount shift=0 on the mps2
+/// boards, instructions per call = ticks × 40 / 64 (see [`systick_per_call`]).
+fn op_ticks<T: Real>(
+    exp: fn(&Vec6<T>) -> Transform<T>,
+    log: fn(&Transform<T>) -> Vec6<T>,
+    concat: fn(&Transform<T>, &Mat6<T>, &Transform<T>, &Mat6<T>) -> (Transform<T>, Mat6<T>),
+) -> [u32; 3] {
+    const REPS: u32 = 64;
+    let xi = Vector([0.3, -0.2, 0.5, 0.4, 0.1, -0.3].map(T::lit));
+    let xi2 = Vector([-0.6, 0.1, 0.2, 0.0, 0.7, 0.2].map(T::lit));
+    let (a, b) = (se3::exp(&xi), se3::exp(&xi2));
+    let cov = Mat6::from_diagonal(&Vector([1e-3, 2e-3, 5e-4, 1e-3, 3e-3, 2e-3].map(T::lit)));
+    [
+        systick_total(REPS, || {
+            black_box(exp(black_box(&xi)));
+        }),
+        systick_total(REPS, || {
+            black_box(log(black_box(&a)));
+        }),
+        systick_total(REPS, || {
+            black_box(concat(
+                black_box(&a),
+                black_box(&cov),
+                black_box(&b),
+                black_box(&cov),
+            ));
+        }),
+    ]
 }
 
 fn abs(x: f64) -> f64 {
@@ -93,7 +173,12 @@ fn case_err(pose: &[[f64; 4]; 4], cov: &[[f64; 6]; 6], c: &Case) -> f64 {
 /// SysTick ticks (core clock) per call of `f`, averaged over `reps` calls. Under
 /// `qemu -icount shift=0` one instruction takes 1 ns; the mps2 boards clock SysTick at
 /// 25 MHz, so 1 tick = 40 instructions there. Without -icount the number means nothing.
-fn systick_per_call(reps: u32, mut f: impl FnMut()) -> u32 {
+fn systick_per_call(reps: u32, f: impl FnMut()) -> u32 {
+    systick_total(reps, f) / reps
+}
+
+/// SysTick ticks (core clock) for `reps` calls of `f` (see [`systick_per_call`]).
+fn systick_total(reps: u32, mut f: impl FnMut()) -> u32 {
     use cortex_m::peripheral::{syst::SystClkSource, SYST};
     // SAFETY: single-threaded firmware, no interrupt handlers use SysTick.
     let mut cp = unsafe { cortex_m::Peripherals::steal() };
@@ -107,7 +192,7 @@ fn systick_per_call(reps: u32, mut f: impl FnMut()) -> u32 {
     }
     let s1 = SYST::get_current();
     cp.SYST.disable_counter();
-    (s0.wrapping_sub(s1) & 0x00FF_FFFF) / reps
+    s0.wrapping_sub(s1) & 0x00FF_FFFF
 }
 
 const PAINT: u32 = 0x5AFE_C0DE;
@@ -141,7 +226,10 @@ fn stack_used(f: impl FnOnce()) -> usize {
 
 #[entry]
 fn main() -> ! {
-    hprintln!("ppoe firmware: seed robot, {} cases, f64 and f32", EXPECTED.len());
+    hprintln!(
+        "ppoe firmware: seed robot, {} cases, f64 and f32",
+        EXPECTED.len()
+    );
     let (mut passed, mut worst64, mut worst32) = (0usize, 0.0f64, 0.0f64);
     for c in EXPECTED.iter() {
         // f64: the table SEED, inputs as they are.
@@ -197,6 +285,21 @@ fn main() -> ! {
         t32,
         t64
     );
+
+    // Instructions of the small ops (same meaning as the PPOE line above).
+    let o32 = op_ticks::<f32>(ppoe_exp_f32, ppoe_log_f32, ppoe_concat_f32);
+    let o64 = op_ticks::<f64>(ppoe_exp_f64, ppoe_log_f64, ppoe_concat_f64);
+    for (i, name) in ["se3_exp", "se3_log", "concat_globally_2nd"]
+        .iter()
+        .enumerate()
+    {
+        hprintln!(
+            "systick ticks per 64 calls of {}: f32 {} f64 {} (x40/64 = instructions per call under qemu -icount shift=0; meaningless otherwise)",
+            name,
+            o32[i],
+            o64[i]
+        );
+    }
 
     let s32 = stack_used(|| {
         black_box(ppoe_seed_f32(black_box(&th32), black_box(&covs32)));
