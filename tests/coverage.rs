@@ -44,7 +44,7 @@
 
 mod common;
 use common::*;
-use ppoe::chain::{screw_noise, ChainRef, Convention, Joint, JointKind};
+use ppoe::chain::{screw_noise, ChainRef, Convention, Joint};
 use ppoe::ellipsoid::{chi2_3_probability, unit_sphere_point, LiftSurface};
 use ppoe::{se3, Mat3, Mat6, Matrix, Transform, Vec3, Vector};
 use rand::{Rng, SeedableRng};
@@ -333,50 +333,11 @@ impl LiftInverse {
     }
 }
 
-/// A chain from a golden file: joints (kinds from `joint_types`), home pose.
+/// A chain from a golden file, and the file.
 fn golden_chain(file: &str) -> (Vec<Joint<f64>>, Transform<f64>, serde_json::Value) {
     let g = golden(file);
-    let joints = g["joints"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .zip(g["joint_types"].as_array().unwrap())
-        .zip(g["screw_axes"].as_array().unwrap())
-        .zip(g["limits"].as_array().unwrap())
-        .map(|(((n, k), s), l)| {
-            let name: &'static str = Box::leak(n.as_str().unwrap().to_string().into_boxed_str());
-            let kind = match k.as_str().unwrap() {
-                "revolute" => JointKind::Revolute,
-                "continuous" => JointKind::Continuous,
-                "prismatic" => JointKind::Prismatic,
-                other => panic!("joint type {other}"),
-            };
-            let l = vec_n::<2>(l);
-            Joint::new(name, kind, vec_n::<6>(s), l[0], l[1])
-        })
-        .collect();
-    let home = transform(&g["home"]);
+    let (joints, home) = chain_from_golden(&g);
     (joints, home, g)
-}
-
-/// The seed's joint covariances (MATH.md §5.3): 0.05 rad² about base z for joint 1 and
-/// about base y for joints 2, 3 and 5.
-fn seed_covs() -> Vec<Mat6<f64>> {
-    let z = Mat6::from_diagonal(&Vector([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]));
-    let y = Mat6::from_diagonal(&Vector([0.0, 1.0, 0.0, 0.0, 0.0, 0.0]));
-    [z, y, y, Matrix::zeros(), y, Matrix::zeros()]
-        .iter()
-        .map(|c| *c * 0.05)
-        .collect()
-}
-
-/// Seed-animation joint values at frame k.
-fn seed_frame(k: usize) -> Vec<f64> {
-    let angle = 0.5 * (2.0 * std::f64::consts::PI * (0.5 + k as f64 / 200.0)).cos();
-    [1.0, 1.0, 1.0, 0.0, 1.0, 0.0]
-        .iter()
-        .map(|t| angle * t)
-        .collect()
 }
 
 /// Tool positions of `N_SAMPLES` draws of the model `T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M`.
@@ -386,22 +347,9 @@ fn sample_tool_positions(
     covs: &[Mat6<f64>],
     seed: u64,
 ) -> Vec<Vec3<f64>> {
-    let gs: Vec<Gaussian6> = covs.iter().map(Gaussian6::new).collect();
-    let ds: Vec<Transform<f64>> = chain
-        .joints
+    sample_chain_poses(chain, thetas, covs, seed, N_SAMPLES)
         .iter()
-        .zip(thetas)
-        .map(|(j, t)| j.displacement(j.clip(*t, false)))
-        .collect();
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    (0..N_SAMPLES)
-        .map(|_| {
-            let mut t = Transform::identity();
-            for (d, g) in ds.iter().zip(&gs) {
-                t = t * *d * se3::exp(&g.sample(&mut rng));
-            }
-            t.transform_point(&chain.home.translation)
-        })
+        .map(|t| t.translation)
         .collect()
 }
 
@@ -601,7 +549,7 @@ fn lift_coordinate_inverts_the_surface_map() {
         home,
     };
     let up = chain
-        .ppoe(&seed_frame(0), &seed_covs(), Convention::Right)
+        .ppoe(&seed_frame(0), &seed_covs(1.0), Convention::Right)
         .unwrap();
     let lift = LiftInverse::new(&up.pose, &up.cov);
     for s in [
@@ -622,7 +570,7 @@ fn lift_surface_coverage_seed_robot_frame_0() {
         joints: &joints,
         home,
     };
-    check_case("seed, frame 0", &chain, &seed_frame(0), &seed_covs(), 40);
+    check_case("seed, frame 0", &chain, &seed_frame(0), &seed_covs(1.0), 40);
 }
 
 #[test]
@@ -636,7 +584,7 @@ fn lift_surface_coverage_seed_robot_frame_100() {
         "seed, frame 100",
         &chain,
         &seed_frame(100),
-        &seed_covs(),
+        &seed_covs(1.0),
         41,
     );
 }

@@ -10,9 +10,8 @@
 
 mod common;
 use common::*;
-use ppoe::chain::{ChainRef, Convention, Joint, JointKind};
-use ppoe::{Mat6, Real, Transform, Vec6, Vector};
-use serde_json::Value;
+use ppoe::chain::{ChainRef, Convention};
+use ppoe::{Mat6, Real, Vec6, Vector};
 
 const F64_BOUND: f64 = 1e-12;
 /// Six joints, each an exp (≈ 20 roundings) and a 6×6 congruence (≈ 12 roundings per
@@ -29,36 +28,6 @@ const FILES: [&str; 8] = [
     "tree_base_footprint_left_tip",
     "tree_base_footprint_right_tip",
 ];
-
-/// The chain as the oracle computed it (screw axes, home pose, limits, kinds).
-pub fn chain_from_golden<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
-    let names = g["joints"].as_array().unwrap();
-    let kinds = g["joint_types"].as_array().unwrap();
-    let joints = names
-        .iter()
-        .zip(kinds)
-        .zip(g["screw_axes"].as_array().unwrap())
-        .zip(g["limits"].as_array().unwrap())
-        .map(|(((n, k), s), lim)| {
-            let kind = match k.as_str().unwrap() {
-                "revolute" => JointKind::Revolute,
-                "continuous" => JointKind::Continuous,
-                "prismatic" => JointKind::Prismatic,
-                other => panic!("joint type {other}"),
-            };
-            let name: &'static str = Box::leak(n.as_str().unwrap().to_string().into_boxed_str());
-            let lim = vec_n::<2>(lim);
-            Joint::new(
-                name,
-                kind,
-                vec_n::<6>(s).map(T::lit),
-                T::lit(lim[0]),
-                T::lit(lim[1]),
-            )
-        })
-        .collect();
-    (joints, cast_t(&transform(&g["home"])))
-}
 
 fn run<T: Real>(bound: f64, file: &str) {
     let g = golden(&format!("ppoe/{file}.json"));

@@ -7,7 +7,7 @@ mod common;
 use common::*;
 use ppoe::chain::{ChainRef, Convention};
 use ppoe::uncertainty::{self, Order};
-use ppoe::{se3, Mat6, Matrix, Transform, Vec3, Vec6, Vector};
+use ppoe::{se3, Mat6, Transform, Vec3, Vec6, Vector};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
@@ -89,73 +89,27 @@ fn concat_locally_matches_sampling() {
     assert!(e < 0.015, "{e}");
 }
 
-/// Samples the PPOE model T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M and returns the right perturbations
-/// η = Log(T̄⁻¹·T).
+/// Samples the PPOE model and returns the right perturbations η = Log(T̄⁻¹·T).
 fn sample_chain(
     chain: &ChainRef<f64>,
     thetas: &[f64],
     covs: &[Mat6<f64>],
     seed: u64,
 ) -> Vec<Vec6<f64>> {
-    let gs: Vec<Gaussian6> = covs.iter().map(Gaussian6::new).collect();
-    let ds: Vec<Transform<f64>> = chain
-        .joints
-        .iter()
-        .zip(thetas)
-        .map(|(j, t)| j.displacement(j.clip(*t, false)))
-        .collect();
     let mean_inv = chain.forward_kinematics(thetas).unwrap().inverse();
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    (0..N)
-        .map(|_| {
-            let mut t = Transform::identity();
-            for (d, g) in ds.iter().zip(&gs) {
-                t = t * *d * se3::exp(&g.sample(&mut rng));
-            }
-            se3::log(&(mean_inv * t * chain.home))
-        })
+    sample_chain_poses(chain, thetas, covs, seed, N)
+        .iter()
+        .map(|t| se3::log(&(mean_inv * *t)))
         .collect()
 }
 
 fn seed_chain() -> (Vec<ppoe::chain::Joint<f64>>, Transform<f64>) {
-    let g = golden("ppoe/seed_linkmount_tcp.json");
-    let joints = g["joints"].as_array().unwrap();
-    let j = joints
-        .iter()
-        .zip(g["screw_axes"].as_array().unwrap())
-        .zip(g["limits"].as_array().unwrap())
-        .map(|((n, s), l)| {
-            let name: &'static str = Box::leak(n.as_str().unwrap().to_string().into_boxed_str());
-            let l = vec_n::<2>(l);
-            ppoe::chain::Joint::new(
-                name,
-                ppoe::chain::JointKind::Revolute,
-                vec_n::<6>(s),
-                l[0],
-                l[1],
-            )
-        })
-        .collect();
-    (j, transform(&g["home"]))
-}
-
-/// The seed's joint covariances (MATH.md §5.3) scaled by `scale`.
-fn seed_covs(scale: f64) -> Vec<Mat6<f64>> {
-    let z = diag([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
-    let y = diag([0.0, 1.0, 0.0, 0.0, 0.0, 0.0]);
-    [z, y, y, Matrix::zeros(), y, Matrix::zeros()]
-        .iter()
-        .map(|c| *c * (0.05 * scale))
-        .collect()
+    chain_from_golden(&golden("ppoe/seed_linkmount_tcp.json"))
 }
 
 /// Seed-animation joint values at frame k.
 fn frame(k: usize) -> Vec<f64> {
-    let angle = 0.5 * (2.0 * std::f64::consts::PI * (0.5 + k as f64 / 200.0)).cos();
-    [1.0, 1.0, 1.0, 0.0, 1.0, 0.0]
-        .iter()
-        .map(|t| angle * t)
-        .collect()
+    seed_frame(k)
 }
 
 #[test]

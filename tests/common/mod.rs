@@ -218,3 +218,85 @@ impl Worst {
         );
     }
 }
+
+/// A chain from a golden PPOE file in scalar T: joints (kinds from `joint_types`, names
+/// leaked to `'static` as the const tables have them) and home pose.
+pub fn chain_from_golden<T: ppoe::Real>(g: &Value) -> (Vec<ppoe::chain::Joint<T>>, Transform<T>) {
+    use ppoe::chain::{Joint, JointKind};
+    let joints = g["joints"]
+        .as_array()
+        .expect("joints")
+        .iter()
+        .zip(g["joint_types"].as_array().expect("joint_types"))
+        .zip(g["screw_axes"].as_array().expect("screw_axes"))
+        .zip(g["limits"].as_array().expect("limits"))
+        .map(|(((n, k), s), l)| {
+            let name: &'static str =
+                Box::leak(n.as_str().expect("name").to_string().into_boxed_str());
+            let kind = match k.as_str().expect("type") {
+                "revolute" => JointKind::Revolute,
+                "continuous" => JointKind::Continuous,
+                "prismatic" => JointKind::Prismatic,
+                other => panic!("joint type {other}"),
+            };
+            let l = vec_n::<2>(l);
+            Joint::new(
+                name,
+                kind,
+                vec_n::<6>(s).map(T::lit),
+                T::lit(l[0]),
+                T::lit(l[1]),
+            )
+        })
+        .collect();
+    (joints, cast_t(&transform(&g["home"])))
+}
+
+/// The seed example's joint covariances (MATH.md §5.3) scaled by `scale`: 0.05 rad² about
+/// the base z axis for joint 1 and about the base y axis for joints 2, 3 and 5.
+pub fn seed_covs(scale: f64) -> Vec<Mat6<f64>> {
+    let z = Mat6::from_diagonal(&Vector([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]));
+    let y = Mat6::from_diagonal(&Vector([0.0, 1.0, 0.0, 0.0, 0.0, 0.0]));
+    [z, y, y, Matrix::zeros(), y, Matrix::zeros()]
+        .iter()
+        .map(|c| *c * (0.05 * scale))
+        .collect()
+}
+
+/// The seed animation's joint values at frame k (MATH.md §5.3).
+pub fn seed_frame(k: usize) -> Vec<f64> {
+    let angle = 0.5 * (2.0 * std::f64::consts::PI * (0.5 + k as f64 / 200.0)).cos();
+    [1.0, 1.0, 1.0, 0.0, 1.0, 0.0]
+        .iter()
+        .map(|t| angle * t)
+        .collect()
+}
+
+/// `n` draws of the PPOE model `T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M`, ξᵢ ~ N(0, covsᵢ), with a
+/// fixed seed.
+pub fn sample_chain_poses(
+    chain: &ppoe::chain::ChainRef<f64>,
+    thetas: &[f64],
+    covs: &[Mat6<f64>],
+    seed: u64,
+    n: usize,
+) -> Vec<Transform<f64>> {
+    use rand::SeedableRng;
+    let gs: Vec<Gaussian6> = covs.iter().map(Gaussian6::new).collect();
+    let ds: Vec<Transform<f64>> = chain
+        .joints
+        .iter()
+        .zip(thetas)
+        .map(|(j, t)| j.displacement(j.clip(*t, false)))
+        .collect();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    (0..n)
+        .map(|_| {
+            let mut t = Transform::identity();
+            for (d, g) in ds.iter().zip(&gs) {
+                t = t * *d * ppoe::se3::exp(&g.sample(&mut rng));
+            }
+            t * chain.home
+        })
+        .collect()
+}
