@@ -338,7 +338,12 @@ def render(d):
         p("code can beat it, so ours/bound < 1 is possible. Measured f64: %s µs = %s the bound." % (us(s64), ratio(s64, fl["bound_us"] * 1e3)))
         p("")
     # ---- firmware
-    p("## Cortex-M4F (thumbv7em-none-eabihf, QEMU mps2-an386, opt-level s, LTO)")
+    opt = "?"
+    for line in (ROOT / "examples/firmware/Cargo.toml").read_text().splitlines():
+        if line.startswith("opt-level"):
+            opt = line.split("=")[1].split("#")[0].strip().strip('"')
+            break
+    p(f"## Cortex-M4F (thumbv7em-none-eabihf, QEMU mps2-an386, opt-level {opt}, LTO)")
     p("")
     if fw and "ppoe_insns" in fw:
         pi = fw["ppoe_insns"]
