@@ -339,7 +339,8 @@ def render(d):
         p("")
     # ---- firmware
     opt = "?"
-    for line in (ROOT / "examples/firmware/Cargo.toml").read_text().splitlines():
+    fw_toml = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples", "firmware", "Cargo.toml")
+    for line in open(fw_toml).read().splitlines():
         if line.startswith("opt-level"):
             opt = line.split("=")[1].split("#")[0].strip().strip('"')
             break
