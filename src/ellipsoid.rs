@@ -360,11 +360,15 @@ pub fn unit_sphere_point<T: Real>(n_steps: usize, i: usize, j: usize) -> Vec3<T>
 /// checked `out.len() ≥ n_steps²`.
 #[inline]
 fn fill_grid<T: Real>(n_steps: usize, out: &mut [Vec3<T>], mut f: impl FnMut(&Vec3<T>) -> Vec3<T>) {
+    // The same values as unit_sphere_point, with the row's sin/cos φ computed once.
+    let den = T::from_usize(n_steps.max(2) - 1);
     let mut slots = out.iter_mut();
     for i in 0..n_steps {
+        let (sp, cp) = (T::from_usize(i) * (T::PI() / den)).sin_cos_r();
         for j in 0..n_steps {
+            let (st, ct) = (T::from_usize(j) * ((T::PI() + T::PI()) / den)).sin_cos_r();
             if let Some(slot) = slots.next() {
-                *slot = f(&unit_sphere_point(n_steps, i, j));
+                *slot = f(&Vec3::new(sp * ct, sp * st, cp));
             }
         }
     }
@@ -496,8 +500,8 @@ pub fn to_projected_ellipsoid_from_eigen<T: Real>(
                 + u.0[1] * radii[1] * vrow[1]
                 + u.0[2] * radii[2] * vrow[2];
         }
-        let e = se3::exp(&xi);
-        let c = e.rotation.tr_mul_vec(&e.translation);
+        // R(E)ᵀ·p(E) = Exp(ω)ᵀ·J(ω)·v = J(−ω)·v: the translation of Exp(−ω, v).
+        let c = se3::exp_translation(&Vec6::from_parts(-xi.rotation(), xi.translation()));
         mean.rotation * c + mean.translation
     });
     Ok(n)
@@ -615,8 +619,8 @@ impl<T: Real> LiftSurface<T> {
     /// a few ε).
     #[inline]
     pub fn point(&self, s: &Vec3<T>) -> Vec3<T> {
-        let e = se3::exp(&self.perturbation(s));
-        self.mean.transform_point(&e.translation)
+        self.mean
+            .transform_point(&se3::exp_translation(&self.perturbation(s)))
     }
 
     /// The surface at radius `k` (`‖s‖ = k`) on the unit-sphere grid (row-major, `n_steps²`

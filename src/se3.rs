@@ -303,6 +303,13 @@ pub fn exp<T: Real>(xi: &Vec6<T>) -> Transform<T> {
     }
 }
 
+/// The translation part `J(ω)·v` of [`exp`]`(ξ)` alone (no rotation matrix): for surfaces
+/// that map many perturbations to positions. Same method and accuracy as [`exp`].
+#[inline]
+pub fn exp_translation<T: Real>(xi: &Vec6<T>) -> Vec3<T> {
+    so3::ExpParts::new(&xi.rotation()).jacobian() * xi.translation()
+}
+
 /// Logarithm: exponential coordinates ξ = (ω, v), ‖ω‖ ∈ [0, π], with `Exp(ξ) = T`.
 ///
 /// Corresponds to pytransform3d's `exponential_coordinates_from_transform`. Method: ω
