@@ -159,7 +159,10 @@ fn sin_cos_f32(x: f32) -> (f32, f32) {
     const P1: f32 = 1.570_312_5;
     const P2: f32 = 4.837_513e-4;
     const P3: f32 = 7.549_79e-8;
-    let k = libm::rintf(x * core::f32::consts::FRAC_2_PI);
+    // Round to nearest with the 1.5·2²³ trick (exact for |y| < 2²²; here |y| ≤ 6367): two
+    // additions instead of a software rintf on cores without a rounding instruction.
+    const MAGIC: f32 = 12_582_912.0;
+    let k = (x * core::f32::consts::FRAC_2_PI + MAGIC) - MAGIC;
     let r = ((x - k * P1) - k * P2) - k * P3;
     let z = r * r;
     let s = ((-1.951_529_6e-4 * z + 8.332_161e-3) * z - 1.666_665_5e-1) * z * r + r;
