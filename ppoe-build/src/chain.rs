@@ -207,7 +207,15 @@ impl Urdf {
 
         // T_base←child for every joint on the path, as pytransform3d's get_transform: the
         // direct edge for a child of the base, otherwise I, then T ← C_k·T from the link up.
+        // That costs O(i) products per joint, O(n²) per chain; beyond EXACT_ORDER_MAX_PATH
+        // joints the products are accumulated base to tip instead (O(n); equal up to
+        // rounding, ~1e-16 relative).
+        let prefix: Option<Vec<Mat4>> =
+            (path.len() > EXACT_ORDER_MAX_PATH).then(|| prefix_products(&path));
         let link2base = |i: usize| -> Mat4 {
+            if let Some(prefix) = &prefix {
+                return prefix[i];
+            }
             if i == 0 {
                 return path[0].child2parent;
             }
@@ -221,6 +229,7 @@ impl Urdf {
         let mut out = Vec::with_capacity(selected.len());
         for &i in &selected {
             let j = path[i];
+            check_limits(j)?;
             let l = link2base(i);
             let s = math::rotate(&l, j.axis);
             let n = math::norm(s);
@@ -253,15 +262,10 @@ impl Urdf {
                 }
             };
             if screw.iter().any(|x| !x.is_finite()) {
-                return Err(Error::new(
-                    ErrorKind::NonFinite,
-                    format!(
-                        "joint '{}': the screw axis {screw:?} is not finite (the origins \
-                         along the path overflow)",
-                        j.name
-                    ),
-                )
-                .at(j.position));
+                return Err(overflow_error(
+                    &path[..=i],
+                    &format!("the screw axis of joint '{}'", j.name),
+                ));
             }
             out.push(ChainJoint {
                 name: j.name.clone(),
@@ -274,11 +278,10 @@ impl Urdf {
 
         let home = link2base(path.len() - 1);
         if home.iter().flatten().any(|x| !x.is_finite()) {
-            return Err(Error::new(
-                ErrorKind::NonFinite,
-                format!("the home pose of '{tip}' in '{base}' is not finite (the origins along the path overflow)"),
-            )
-            .at(link_pos(tip)));
+            return Err(overflow_error(
+                &path,
+                &format!("the home pose of '{tip}' in '{base}'"),
+            ));
         }
 
         Ok(RobotChain {
@@ -298,10 +301,19 @@ impl Urdf {
         base: &str,
         tip: &str,
     ) -> Result<Vec<usize>> {
+        // Hash lookups, so that a list of 10⁴ joints is not quadratic.
+        let by_name: HashMap<&str, &UrdfJoint> =
+            self.joints.iter().map(|j| (j.name.as_str(), j)).collect();
+        let on_path: HashMap<&str, usize> = path
+            .iter()
+            .enumerate()
+            .map(|(i, j)| (j.name.as_str(), i))
+            .collect();
+        let mut seen: std::collections::HashSet<&str> = std::collections::HashSet::new();
         let mut out: Vec<usize> = Vec::with_capacity(list.len());
-        for (k, name) in list.iter().enumerate() {
+        for name in list {
             let name = name.as_ref();
-            let Some(joint) = self.joint(name) else {
+            let Some(&joint) = by_name.get(name) else {
                 return Err(Error::new(
                     ErrorKind::UnknownJoint,
                     format!(
@@ -310,13 +322,13 @@ impl Urdf {
                     ),
                 ));
             };
-            if list[..k].iter().any(|n| n.as_ref() == name) {
+            if !seen.insert(name) {
                 return Err(Error::new(
                     ErrorKind::DuplicateName,
                     format!("joint '{name}' is listed twice"),
                 ));
             }
-            let Some(i) = path.iter().position(|j| j.name == name) else {
+            let Some(&i) = on_path.get(name) else {
                 return Err(Error::new(
                     ErrorKind::NotOnPath,
                     format!(
@@ -355,6 +367,85 @@ impl Urdf {
             out.push(i);
         }
         Ok(out)
+    }
+}
+
+/// Paths with at most this many joints get pytransform3d's evaluation order, bit for bit
+/// (O(n²) matrix products per chain); longer ones are accumulated base to tip (O(n)).
+const EXACT_ORDER_MAX_PATH: usize = 256;
+
+/// `P_i = C_0·C_1·…·C_i`, accumulated base to tip.
+fn prefix_products(path: &[&UrdfJoint]) -> Vec<Mat4> {
+    let mut out: Vec<Mat4> = Vec::with_capacity(path.len());
+    for j in path {
+        let t = match out.last() {
+            Some(prev) => math::mul4(prev, &j.child2parent),
+            None => j.child2parent,
+        };
+        out.push(t);
+    }
+    out
+}
+
+/// A moving joint of the chain must have limits that admit a finite position.
+fn check_limits(j: &UrdfJoint) -> Result<()> {
+    let problem = if j.lower > j.upper {
+        "the lower limit is above the upper limit"
+    } else if j.lower == f64::INFINITY {
+        "the lower limit is +inf"
+    } else if j.upper == f64::NEG_INFINITY {
+        "the upper limit is -inf"
+    } else {
+        return Ok(());
+    };
+    Err(Error::new(
+        ErrorKind::InvalidLimits,
+        format!(
+            "joint '{}' ({}): <limit lower=\"{}\" upper=\"{}\">: {problem}, so no position \
+             is allowed; write lower <= upper (swap them if they are reversed), or leave \
+             out a bound for no limit",
+            j.name,
+            j.joint_type.as_str(),
+            num(j.lower),
+            num(j.upper)
+        ),
+    )
+    .at(j.limit_position.or(j.position)))
+}
+
+/// The error for a non-finite `what` (a screw axis or the home pose) computed from the finite
+/// origins of `path`: names the first joint whose origin makes the product overflow.
+fn overflow_error(path: &[&UrdfJoint], what: &str) -> Error {
+    let prefix = prefix_products(path);
+    let k = prefix
+        .iter()
+        .position(|t| t.iter().flatten().any(|x| !x.is_finite()))
+        .unwrap_or(path.len() - 1);
+    let j = path[k];
+    let c = &j.child2parent;
+    Error::new(
+        ErrorKind::NonFinite,
+        format!(
+            "{what} is not finite: the transforms along the path overflow f64 at joint \
+             '{}' (<origin xyz=\"{} {} {}\">), where link '{}' ends up at an infinite \
+             distance from the base; the origins are finite but too large — use realistic \
+             lengths (metres)",
+            j.name,
+            num(c[0][3]),
+            num(c[1][3]),
+            num(c[2][3]),
+            j.child
+        ),
+    )
+    .at(j.position)
+}
+
+/// A number for a message: plain for ordinary magnitudes, `1e308` for huge or tiny ones.
+fn num(x: f64) -> String {
+    if x.is_finite() && x != 0.0 && !(1e-6..1e16).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
     }
 }
 

@@ -224,16 +224,41 @@ fn item(
     let ty = if f32_table { "f32" } else { "f64" };
     let n = chain.joints.len();
     let geometry_fits = |x: f64| !f32_table || (x as f32).is_finite();
-    if !chain
+    if let Some(j) = chain
         .joints
         .iter()
-        .flat_map(|j| j.screw.iter())
-        .chain(chain.home.iter().flatten())
-        .all(|&x| geometry_fits(x))
+        .find(|j| !j.screw.iter().all(|&x| geometry_fits(x)))
     {
         return Err(Error::new(
             ErrorKind::NonFinite,
-            format!("{name}: a screw axis or home pose value does not fit in f32"),
+            format!(
+                "{name}: the screw axis of joint '{}' {:?} does not fit in f32 (it would be \
+                 infinite); use an f64 table or realistic lengths",
+                j.name, j.screw
+            ),
+        ));
+    }
+    if !chain.home.iter().flatten().all(|&x| geometry_fits(x)) {
+        return Err(Error::new(
+            ErrorKind::NonFinite,
+            format!(
+                "{name}: the home pose of '{}' does not fit in f32 (it would be infinite); \
+                 use an f64 table or realistic lengths",
+                chain.tip
+            ),
+        ));
+    }
+    // Huge finite limits become ±∞ in f32; a range must still admit a finite position.
+    if let Some(j) = chain.joints.iter().find(|j| {
+        f32_table && ((j.lower as f32) == f32::INFINITY || (j.upper as f32) == f32::NEG_INFINITY)
+    }) {
+        return Err(Error::new(
+            ErrorKind::InvalidLimits,
+            format!(
+                "{name}: the limits [{}, {}] of joint '{}' admit no finite f32 position; use an \
+                 f64 table",
+                j.lower, j.upper, j.name
+            ),
         ));
     }
 

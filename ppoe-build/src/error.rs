@@ -18,7 +18,8 @@ pub enum ErrorKind {
     /// A number could not be parsed, or a vector attribute does not hold exactly three.
     InvalidNumber,
     /// NaN or ±∞ where a finite number is needed (origins, axes; NaN in limits), or a
-    /// product of transforms that overflowed.
+    /// product of transforms that overflowed (finite but huge origins whose screw axis or
+    /// home pose is no longer finite).
     NonFinite,
     /// A link named by a joint, or the base or tip link, does not exist.
     UnknownLink,
@@ -40,6 +41,10 @@ pub enum ErrorKind {
     UnsupportedJointType,
     /// A moving joint of the chain has the axis (0, 0, 0).
     ZeroAxis,
+    /// A moving joint of the chain has limits that admit no finite position: `lower >
+    /// upper`, `lower = +∞` or `upper = −∞`. Checked, like [`ErrorKind::ZeroAxis`], only for
+    /// the chain's own moving joints (other joints keep their limits as written).
+    InvalidLimits,
     /// A moving joint on the path is a `<mimic>` joint; mimic joints are not supported.
     Mimic,
     /// A listed joint exists but is not on the path from base to tip, or the list is not in
@@ -70,6 +75,7 @@ impl ErrorKind {
             ErrorKind::NotMovable => "NotMovable",
             ErrorKind::UnsupportedJointType => "UnsupportedJointType",
             ErrorKind::ZeroAxis => "ZeroAxis",
+            ErrorKind::InvalidLimits => "InvalidLimits",
             ErrorKind::Mimic => "Mimic",
             ErrorKind::NotOnPath => "NotOnPath",
             ErrorKind::Io => "Io",

@@ -29,7 +29,16 @@
 //! joint names; a joint whose parent or child link does not exist; unknown joint types; a
 //! link with two parents; a cycle. `planar` and `floating` joints are accepted here and
 //! rejected only if they lie on a chain that is extracted (pytransform3d rejects them
-//! anywhere). Lower > upper is kept as written (pytransform3d does not check it either).
+//! anywhere). Limits that admit no finite position (`lower > upper`, `lower = +∞`,
+//! `upper = −∞`) are kept as written here and rejected ([`ErrorKind::InvalidLimits`]) only
+//! for the moving joints of an extracted chain, like a zero axis (pytransform3d does not
+//! check them at all and clips every value to `upper`).
+//!
+//! Finite but huge numbers (`1e300`) are accepted; if the products along a chain overflow,
+//! extracting that chain is a [`ErrorKind::NonFinite`] error naming the joint.
+//!
+//! Nothing here recurses: the tree checks walk the parent links with explicit loops, so a
+//! serial chain of 10⁴ or more links (or a cycle through them) is no problem.
 
 use crate::error::{Error, ErrorKind, Position, Result};
 use crate::math;
@@ -115,6 +124,8 @@ pub struct Joint {
     pub child_position: Option<Position>,
     /// Where the `<mimic>` element starts (if any).
     pub mimic_position: Option<Position>,
+    /// Where the `<limit>` element starts (if any).
+    pub limit_position: Option<Position>,
 }
 
 /// A parsed URDF: the robot's links and joints in document order.
@@ -149,7 +160,11 @@ impl Urdf {
             };
             Error::new(ErrorKind::Xml, format!("malformed XML: {e}")).at(Some(position))
         })?;
-        Parser { doc: &doc }.robot()
+        Parser {
+            doc: &doc,
+            lines: LineIndex::new(doc.input_text()),
+        }
+        .robot()
     }
 
     /// Parses URDF bytes (must be UTF-8, with or without a byte-order mark).
@@ -195,6 +210,44 @@ fn end_position(text: &str) -> Position {
 
 struct Parser<'a, 'input> {
     doc: &'a Document<'input>,
+    lines: LineIndex<'input>,
+}
+
+/// Byte offset → line and column, as roxmltree's `text_pos_at` counts them (lines split at
+/// `\n`, columns in characters, both from 1), without rescanning the text from its start
+/// for every position (which made parsing quadratic in the file size).
+struct LineIndex<'input> {
+    text: &'input str,
+    /// Byte offset of the start of each line.
+    starts: Vec<usize>,
+}
+
+impl<'input> LineIndex<'input> {
+    fn new(text: &'input str) -> Self {
+        let mut starts = vec![0];
+        starts.extend(
+            text.bytes()
+                .enumerate()
+                .filter(|&(_, b)| b == b'\n')
+                .map(|(i, _)| i + 1),
+        );
+        Self { text, starts }
+    }
+
+    fn position(&self, offset: usize) -> Position {
+        let mut offset = offset.min(self.text.len());
+        while !self.text.is_char_boundary(offset) {
+            offset -= 1;
+        }
+        // The number of line starts at or before `offset` (≥ 1: the first is 0).
+        let line = self.starts.partition_point(|&s| s <= offset);
+        let start = self.starts[line - 1];
+        let column = self.text[start..offset].chars().count() + 1;
+        Position {
+            line: u32::try_from(line).unwrap_or(u32::MAX),
+            column: u32::try_from(column).unwrap_or(u32::MAX),
+        }
+    }
 }
 
 /// Shortens an attribute value for a message.
@@ -220,11 +273,7 @@ fn first_child<'a, 'input>(node: Node<'a, 'input>, name: &str) -> Option<Node<'a
 
 impl<'input> Parser<'_, 'input> {
     fn pos(&self, offset: usize) -> Option<Position> {
-        let p = self.doc.text_pos_at(offset);
-        Some(Position {
-            line: p.row,
-            column: p.col,
-        })
+        Some(self.lines.position(offset))
     }
 
     fn node_pos(&self, node: Node<'_, 'input>) -> Option<Position> {
@@ -381,9 +430,11 @@ impl<'input> Parser<'_, 'input> {
         }
 
         let (mut lower, mut upper) = (f64::NEG_INFINITY, f64::INFINITY);
+        let mut limit_position = None;
         if joint_type == JointType::Fixed {
             (lower, upper) = (0.0, 0.0);
         } else if let Some(limit) = first_child(node, "limit") {
+            limit_position = self.node_pos(limit);
             if let Some(v) = self.limit(limit, "lower", &what)? {
                 lower = v;
             }
@@ -407,6 +458,7 @@ impl<'input> Parser<'_, 'input> {
             axis_position,
             child_position,
             mimic_position: mimic_node.and_then(|m| self.node_pos(m)),
+            limit_position,
         })
     }
 
@@ -553,6 +605,15 @@ fn check_tree(links: &[Link], joints: &[Joint]) -> Result<()> {
                     let start = walk.iter().position(|l| *l == cur).unwrap_or(0);
                     let mut names: Vec<&str> = walk[start..].to_vec();
                     names.push(cur);
+                    // A long cycle is shown by its first and last links.
+                    const SHOWN: usize = 6;
+                    let more = format!("… ({} more links)", names.len().saturating_sub(2 * SHOWN));
+                    if names.len() > 2 * SHOWN + 1 {
+                        let tail = names.split_off(names.len() - SHOWN);
+                        names.truncate(SHOWN);
+                        names.push(&more);
+                        names.extend(tail);
+                    }
                     let j = parent_joint.get(cur).copied();
                     let joint = j.map(|j| &joints[j]);
                     return Err(Error::new(

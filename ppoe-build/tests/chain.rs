@@ -728,6 +728,14 @@ fn every_error_kind() {
             &["'j'", "axis"],
         ),
         (
+            ErrorKind::InvalidLimits,
+            two_links("<limit lower=\"1\" upper=\"-1\"/>"),
+            "a",
+            "b",
+            None,
+            &["'j'", "lower=\"1\"", "upper=\"-1\""],
+        ),
+        (
             ErrorKind::Mimic,
             two_links("<mimic joint=\"other\" multiplier=\"2\"/>"),
             "a",
@@ -791,6 +799,7 @@ fn every_error_kind() {
         ErrorKind::NotMovable,
         ErrorKind::UnsupportedJointType,
         ErrorKind::ZeroAxis,
+        ErrorKind::InvalidLimits,
         ErrorKind::Mimic,
         ErrorKind::NotOnPath,
     ] {

@@ -112,6 +112,9 @@ impl Rng {
         match self.below(4) {
             0 if lower => f64::NEG_INFINITY,
             0 => f64::INFINITY,
+            // Beyond f32 on the unbounded side (a huge lower bound would leave no finite
+            // f32 position, an InvalidLimits error).
+            1 if lower => -1e300,
             1 => 1e300,
             _ => self.value(),
         }
