@@ -138,7 +138,8 @@ pub fn concat_locally<T: Real>(
     cov_b: &Mat6<T>,
 ) -> (Transform<T>, Mat6<T>) {
     let moved = mean_a2b.inverse().transport_covariance(cov_b);
-    (*mean_b2c * *mean_a2b, moved + *cov_a)
+    // Symmetrised: cov_a may be symmetric only within tolerance.
+    (*mean_b2c * *mean_a2b, (moved + *cov_a).symmetrize())
 }
 
 /// Inverts an uncertain transform with **left (global)** perturbation: returns
