@@ -5,6 +5,8 @@
 #   scripts/fuzz-smoke.sh                 # 30 s per target
 #   FUZZ_SECONDS=60 scripts/fuzz-smoke.sh
 #   FUZZ_TARGETS="urdf eigen" scripts/fuzz-smoke.sh
+#   FUZZ_SEED=1 FUZZ_RUNS=100000 scripts/fuzz-smoke.sh   # reproducible: fixed seed and count
+#                                                        # (FUZZ_SECONDS stays an upper bound)
 #
 # Crash inputs are kept in fuzz/artifacts/<target>/. Prints the executions per target.
 set -euo pipefail
@@ -13,6 +15,11 @@ FUZZ_SECONDS="${FUZZ_SECONDS:-30}"
 FUZZ_TARGETS="${FUZZ_TARGETS:-urdf core_f64 core_f32 eigen}"
 FUZZ_MAX_LEN="${FUZZ_MAX_LEN:-65536}"
 FUZZ_SUMMARY="${FUZZ_SUMMARY:-}" # if set, "target executions" lines are appended to it
+FUZZ_SEED="${FUZZ_SEED:-}"       # libFuzzer -seed (default: random)
+FUZZ_RUNS="${FUZZ_RUNS:-}"       # libFuzzer -runs (default: unbounded, time only)
+extra=()
+[ -n "$FUZZ_SEED" ] && extra+=("-seed=$FUZZ_SEED")
+[ -n "$FUZZ_RUNS" ] && extra+=("-runs=$FUZZ_RUNS")
 
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root/fuzz"
@@ -43,7 +50,7 @@ for target in $FUZZ_TARGETS; do
     cargo +nightly fuzz run "$target" "$work/$target" -- \
         -max_total_time="$FUZZ_SECONDS" -max_len="$FUZZ_MAX_LEN" -timeout=30 \
         -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="artifacts/$target/" \
-        >"$log" 2>&1
+        ${extra[@]+"${extra[@]}"} >"$log" 2>&1
     rc=$?
     set -e
     t1=$(date +%s)
@@ -54,6 +61,8 @@ for target in $FUZZ_TARGETS; do
     else
         result="CRASH (exit $rc)"
         status=1
+        echo "---- $target: the failure ----" >&2
+        grep -m1 -A3 "panicked at" "$log" >&2 || true
         echo "---- $target: last 60 lines of the log ----" >&2
         tail -60 "$log" >&2
         ls -1 "artifacts/$target" >&2 || true
