@@ -11,126 +11,19 @@
 //! fixed seed (ChaCha8), so a run is deterministic: the same command gives the same file.
 //! Progress and the run time go to standard error (they are not part of the report).
 
-use ppoe::chain::{screw_noise, ChainRef, Convention, Joint, JointKind};
+use ppoe::chain::{screw_noise, ChainRef, Convention};
 use ppoe::uncertainty::{self, Order};
-use ppoe::{se3, Mat6, Matrix, Real, Transform, Vec6, Vector};
+use ppoe::{se3, Mat6, Matrix, Transform, Vec6, Vector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use serde_json::Value;
 use std::fmt::Write as _;
-use std::path::PathBuf;
 use std::time::Instant;
 
-// ---------------------------------------------------------------------------------------
-// Golden-file helpers (the same encoding as tests/common: numbers, or "inf"/"-inf"/"nan").
-// ---------------------------------------------------------------------------------------
-
-fn golden(rel: &str) -> Value {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("test_data/golden")
-        .join(rel);
-    let text = std::fs::read_to_string(&path)
-        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
-    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
-
-fn num(v: &Value) -> f64 {
-    match v {
-        Value::Number(n) => n.as_f64().expect("number"),
-        Value::String(s) => match s.as_str() {
-            "inf" => f64::INFINITY,
-            "-inf" => f64::NEG_INFINITY,
-            "nan" => f64::NAN,
-            other => panic!("bad float string {other:?}"),
-        },
-        other => panic!("not a float: {other}"),
-    }
-}
-
-fn vec_n<const N: usize>(v: &Value) -> [f64; N] {
-    let a = v.as_array().expect("array");
-    assert_eq!(a.len(), N, "length");
-    std::array::from_fn(|i| num(&a[i]))
-}
-
-fn vecf(v: &Value) -> Vec<f64> {
-    v.as_array().expect("array").iter().map(num).collect()
-}
-
-fn mat6(v: &Value) -> Mat6<f64> {
-    let a = v.as_array().expect("array");
-    Matrix(std::array::from_fn(|i| vec_n::<6>(&a[i])))
-}
-
-fn transform(v: &Value) -> Transform<f64> {
-    let a = v.as_array().expect("array");
-    Transform::from_matrix4(&std::array::from_fn(|i| vec_n::<4>(&a[i])))
-}
-
-/// The chain as the oracle computed it (screw axes, home pose, limits, kinds), rounded to
-/// `T`.
-fn chain_from_golden<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
-    let names = g["joints"].as_array().unwrap();
-    let kinds = g["joint_types"].as_array().unwrap();
-    let joints = names
-        .iter()
-        .zip(kinds)
-        .zip(g["screw_axes"].as_array().unwrap())
-        .zip(g["limits"].as_array().unwrap())
-        .map(|(((n, k), s), lim)| {
-            let kind = match k.as_str().unwrap() {
-                "revolute" => JointKind::Revolute,
-                "continuous" => JointKind::Continuous,
-                "prismatic" => JointKind::Prismatic,
-                other => panic!("joint type {other}"),
-            };
-            let name: &'static str = Box::leak(n.as_str().unwrap().to_string().into_boxed_str());
-            let lim = vec_n::<2>(lim);
-            Joint::new(
-                name,
-                kind,
-                vec_n::<6>(s).map(T::lit),
-                T::lit(lim[0]),
-                T::lit(lim[1]),
-            )
-        })
-        .collect();
-    let h = transform(&g["home"]);
-    let home = Transform {
-        rotation: Matrix(h.rotation.0.map(|r| r.map(T::lit))),
-        translation: Vector(h.translation.0.map(T::lit)),
-    };
-    (joints, home)
-}
-
-// ---------------------------------------------------------------------------------------
-// Error measures.
-// ---------------------------------------------------------------------------------------
-
-fn flat<const R: usize, const C: usize>(m: &Matrix<f64, R, C>) -> Vec<f64> {
-    m.0.iter().flatten().copied().collect()
-}
-
-/// Relative Frobenius error ‖a − b‖ / ‖b‖.
-fn frob_rel(a: &Mat6<f64>, b: &Mat6<f64>) -> f64 {
-    let d: f64 = flat(&(*a - *b)).iter().map(|x| x * x).sum();
-    let n: f64 = flat(b).iter().map(|x| x * x).sum();
-    (d / n).sqrt()
-}
-
-/// The project's error measure: `max|a − b| / max(1, max|b|)`.
-fn rel_err(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let scale = b.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-    let diff = a.iter().zip(b).fold(0.0f64, |m, (x, y)| {
-        if x.is_nan() || y.is_nan() {
-            f64::INFINITY
-        } else {
-            m.max((x - y).abs())
-        }
-    });
-    diff / scale
-}
+// Golden-file loading, the chain loader and the error measures are the tests' own
+// (tests/common): one implementation for the tests and this report.
+#[path = "../tests/common/mod.rs"]
+mod common;
+use common::{chain_from_golden, flat, frob_rel, golden, mat6, rel_err, vec_n, vecf};
 
 // ---------------------------------------------------------------------------------------
 // Sampling.
