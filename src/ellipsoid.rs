@@ -447,9 +447,9 @@ pub fn to_ellipsoid<T: Real>(
 /// same). [`to_projected_ellipsoid_from_eigen`] takes a given eigen basis.
 ///
 /// Accuracy, relative to `max(1, max|y|)`, given the reference's eigen basis: f64
-/// ≤ 10⁻¹² (observed 1.1·10⁻¹⁵ on the 200 golden cases; the reference's batch-exp
+/// ≤ 10⁻¹² (observed 1.5·10⁻¹⁴ on the 200 golden cases; the reference's batch-exp
 /// error never showed there); f32 ≤ 8·ε₃₂·(1 + r), r = factor·√λ₀ the largest
-/// perturbation (its rounding enters sin/cos), observed 1.2·10⁻⁶. With our own eigen
+/// perturbation (its rounding enters sin/cos), observed 1.0·10⁻⁶. With our own eigen
 /// basis add the eigenvector error `ε·‖Σ‖/gap` times r.
 ///
 /// Errors: [`Error::NonFinite`] (any input), [`Error::TooFewSamples`] for
