@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Long fuzzing run: every target for FUZZ_SECONDS (default 3600 = 1 h) from a temporary
-# copy of the seed corpus, then one line per target appended to the table at the end of
-# FUZZING.md (date, target, seconds, executions, crashes). Fails on any crash (the table
-# then records the crash count 1 for that target; see fuzz/artifacts/<target>/).
+# Long fuzzing run: every target for FUZZ_SECONDS (default 3600 = 1 h) or FUZZ_RUNS
+# executions, whichever comes first, from a temporary copy of the seed corpus, then one line
+# per target appended to the table at the end of FUZZING.md (date, target, commit, measured
+# seconds, executions, crashes). Fails on any crash (the table then records the crash count
+# 1 for that target; see fuzz/artifacts/<target>/).
 #
 #   scripts/fuzz-long.sh
 #   FUZZ_SECONDS=600 FUZZ_TARGETS="core_f64" scripts/fuzz-long.sh
+#   FUZZ_RUNS=10000000 FUZZ_SECONDS=7200 FUZZ_TARGETS="urdf" scripts/fuzz-long.sh
 set -uo pipefail
 
 export FUZZ_SECONDS="${FUZZ_SECONDS:-3600}"
@@ -17,10 +19,11 @@ FUZZ_SUMMARY="$summary" "$root/scripts/fuzz-smoke.sh"
 status=$?
 
 day="$(date -u +%Y-%m-%d)"
-while read -r target execs rc; do
+commit="$(git -C "$root" describe --always --dirty 2>/dev/null || echo unknown)"
+while read -r target execs rc secs; do
     crashes=0
     [ "$rc" -ne 0 ] && crashes=1
-    printf '| %s | %s | %s | %s | %s |\n' "$day" "$target" "$FUZZ_SECONDS" "$execs" "$crashes" \
+    printf '| %s | %s | %s | %s | %s | %s |\n' "$day" "$target" "$commit" "$secs" "$execs" "$crashes" \
         >>"$root/FUZZING.md"
 done <"$summary"
 exit $status

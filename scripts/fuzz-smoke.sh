@@ -14,7 +14,7 @@ set -euo pipefail
 FUZZ_SECONDS="${FUZZ_SECONDS:-30}"
 FUZZ_TARGETS="${FUZZ_TARGETS:-urdf core_f64 core_f32 eigen}"
 FUZZ_MAX_LEN="${FUZZ_MAX_LEN:-65536}"
-FUZZ_SUMMARY="${FUZZ_SUMMARY:-}" # if set, "target executions" lines are appended to it
+FUZZ_SUMMARY="${FUZZ_SUMMARY:-}" # if set, "target executions rc seconds" lines are appended to it
 FUZZ_SEED="${FUZZ_SEED:-}"       # libFuzzer -seed (default: random)
 FUZZ_RUNS="${FUZZ_RUNS:-}"       # libFuzzer -runs (default: unbounded, time only)
 extra=()
@@ -69,7 +69,7 @@ for target in $FUZZ_TARGETS; do
     fi
     printf '%-10s %14s %8s %s\n' "$target" "$execs" "$((t1 - t0))" "$result"
     if [ -n "$FUZZ_SUMMARY" ]; then
-        echo "$target $execs $rc" >>"$FUZZ_SUMMARY"
+        echo "$target $execs $rc $((t1 - t0))" >>"$FUZZ_SUMMARY"
     fi
 done
 echo "total: $(( $(date +%s) - start )) s"
