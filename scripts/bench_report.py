@@ -327,8 +327,9 @@ def render(d):
         p("`scripts/flops.py` counts the PPOE's floating-point operations from the source (hand count,")
         p("documented per function there): per joint %d multiplies + %d adds, %d divisions, %d square root, %d sin_cos;"
           % (pj["mul"], pj["add"], pj["div"], pj["sqrt"], pj["sin_cos"]))
-        p("plus %d + %d for the final pose and last-step transport. 6-DOF total: **%d multiplies + %d adds = %d flops**,"
-          % (fl["tail"]["mul"], fl["tail"]["add"], t["mul"], t["add"], fl["flops_mul_add"]))
+        p("plus %d + %d after the loop (summing the %d SIMD lanes of the accumulator; padding lanes of a"
+          " last incomplete group count as computed). 6-DOF total: **%d multiplies + %d adds = %d flops**,"
+          % (fl["tail"]["mul"], fl["tail"]["add"], fl.get("lanes", 1), t["mul"], t["add"], fl["flops_mul_add"]))
         p("%d divisions, %d square roots, %d sin_cos." % (t["div"], t["sqrt"], t["sin_cos"]))
         p("")
         p("Assumed scalar peak: %d FMA per cycle (the two FMA pipes of Zen-class cores; a fused" % fl["fma_per_cycle"])

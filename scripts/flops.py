@@ -1,15 +1,14 @@
 #!/usr/bin/env python3
 """Floating-point operation count of ppoe's PPOE (ChainRef::ppoe, Convention::Right).
 
-A hand count of the source as written (src/chain.rs `ppoe`, src/se3.rs `exp`,
-`Transform::mul`, `inverse`, `transport_covariance`, `sym_sandwich`, `cross_columns`,
-src/so3.rs `ExpCoefficients::new` (non-series branch), `i_plus_aw_bw2`), counting
-multiplies and adds/subtracts separately (negations, clipping compares, copies: 0), and
-division, square root and sin_cos apart. Common subexpressions the compiler sees after
-inlining (the products w_i w_j, b·xy, a·z, ... shared by R and J in se3::exp) are counted
-once. Update the table below when those functions change.
+A hand count of the source as written (src/chain.rs `ppoe_lanes`, `Joint::displacement`,
+`TransportSum`; src/se3.rs `Transform::mul`, `Congruence::of_inverse`, `transport_lower`,
+`sandwich_add`, `cross_component`; src/so3.rs `i_plus_aw_bw2`), counting multiplies and
+adds/subtracts separately (negations, transposes, clipping compares, copies and the lane
+packing: 0), and division, square root and sin_cos apart. Update the table below when those
+functions change.
 
-Usage: python3 scripts/flops.py [N] [--ghz G] [--fma-per-cycle K]  -> JSON on stdout
+Usage: python3 scripts/flops.py [N] [--ghz G] [--fma-per-cycle K] [--lanes W] -> JSON
 """
 
 import json
@@ -18,39 +17,37 @@ import sys
 # (multiplies, adds) per piece.
 MAT3_MUL = (27, 18)  # 3x3 * 3x3
 MAT3_VEC = (9, 6)  # 3x3 * 3-vector
-CROSS_COLUMNS = (18, 9)  # [p]x M: 9 entries of y*c2 - z*c1
-SYM_SANDWICH = (27 + 18, 18 + 12)  # R*A, then 6 dot products (lower triangle)
+# sandwich_add: per column j, y = X r_j (9 mul, 6 add), then r_i . y (3 mul, 2 add) for
+# the 3 (general) or 3 - j (lower triangle) rows i, each added to the accumulator (1 add).
+SANDWICH_FULL = (27 + 27, 18 + 18 + 9)
+SANDWICH_SYM = (27 + 18, 18 + 12 + 6)
 
 PIECES = {
-    # se3::exp(S*theta): scale S by theta (6 mul); norm: 3 mul 2 add + sqrt;
-    # ExpCoefficients: t2 (1 mul), a = s/t, b = (1-c)/t2 (1 sub), c = (t-s)/(t2*t)
-    # (1 sub, 1 mul) -> 3 div + sin_cos; i_plus_aw_bw2 for R and for J: the 6 products
-    # w_i w_j once, per call 3 diagonal entries (1 add, 1 mul, 1 sub) and 6 off-diagonal
-    # entries from 6 distinct products (b*xy, b*xz, b*yz, a*x, a*y, a*z) and 1 add each;
-    # translation J*v.
+    # Joint::displacement: norm (3 mul, 2 add, sqrt), 1/norm (div), unit axis x and v/|w|
+    # (6 mul), t = theta*|w| (1 mul), sin_cos, 1 - cos (1 add); i_plus_aw_bw2: the 6
+    # products w_i w_j, 3 diagonal entries (2 add, 1 mul), 6 off-diagonal entries from 6
+    # distinct products and 1 add each; translation s*v + (1-c)*(x cross v) + (t-s)(x.v)x:
+    # 3 + (6 mul, 3 sub) + 3 + (3 mul, 2 add) + (1 sub, 1 mul) + 3 mul, 2 vector adds.
     "exp": {
-        "mul": 6 + 3 + 2 + 6 + 2 * (3 + 6) + MAT3_VEC[0],
-        "add": 2 + 2 + 2 * (6 + 6) + MAT3_VEC[1],
-        "div": 3,
+        "mul": 3 + 6 + 1 + (6 + 3 + 3 + 3) + (3 + 6 + 3 + 3 + 1 + 3),
+        "add": 2 + 1 + (6 + 6) + (3 + 2 + 1 + 6),
+        "div": 1,
         "sqrt": 1,
         "sin_cos": 1,
     },
-    # Transform * Transform: R1 R2, R1 p2 + p1.
+    # g = D * g: R1 R2, R1 p2 + p1.
     "compose": {
         "mul": MAT3_MUL[0] + MAT3_VEC[0],
         "add": MAT3_MUL[1] + MAT3_VEC[1] + 3,
     },
-    # transport_covariance: A' = R A R^T and D' = R D R^T (sym_sandwich), B' = R B R^T
-    # (two full products), P A', P B', P (P A')^T (cross_columns, all 9 entries as
-    # written), E = P A' + B'^T (9 add), lower-right 6 entries x 3 add.
+    # transport_lower with Congruence::of_inverse (R^T, q = -p: no arithmetic): the shear,
+    # E = Q A + B^T (9 entries: 2 mul, 1 sub, 1 add) and the lower-right triangle
+    # (6 entries: two cross components, 4 mul 2 sub, and 2 add); then the block rotations
+    # R A R^T, R (lower right) R^T (lower triangles) and R E R^T (full), each accumulated.
     "transport": {
-        "mul": 2 * SYM_SANDWICH[0] + 2 * MAT3_MUL[0] + 3 * CROSS_COLUMNS[0],
-        "add": 2 * SYM_SANDWICH[1] + 2 * MAT3_MUL[1] + 3 * CROSS_COLUMNS[1] + 9 + 18,
+        "mul": 18 + 24 + 2 * SANDWICH_SYM[0] + SANDWICH_FULL[0],
+        "add": 18 + 24 + 2 * SANDWICH_SYM[1] + SANDWICH_FULL[1],
     },
-    # c += transported: a full 6x6 add.
-    "accumulate": {"mul": 0, "add": 36},
-    # Transform::inverse: R^T p (negation free).
-    "inverse": {"mul": MAT3_VEC[0], "add": MAT3_VEC[1]},
 }
 
 
@@ -62,11 +59,13 @@ def add(*ds):
     return out
 
 
-def count(n):
+def count(n, lanes=2):
     p = PIECES
-    per_joint = add(p["exp"], p["compose"], p["transport"], p["accumulate"])
-    # After the loop: pose = P * M, then pose.inverse().transport_covariance(c).
-    tail = add(p["compose"], p["inverse"], p["transport"])
+    per_joint = add(p["exp"], p["compose"], p["transport"])
+    # After the loop: the W lanes of the 36 accumulated entries are summed (W - 1 adds
+    # each); padding lanes of a last incomplete group are counted as computed.
+    pad = (-n) % lanes
+    tail = add(*([p["transport"]] * pad), {"mul": 0, "add": 36 * (lanes - 1)})
     total = add(*([per_joint] * n), tail)
     return per_joint, tail, total
 
@@ -76,10 +75,14 @@ def main():
     n = 6
     ghz = None
     fma_per_cycle = 2
+    lanes = 2
     i = 0
     while i < len(args):
         if args[i] == "--ghz":
             ghz = float(args[i + 1])
+            i += 2
+        elif args[i] == "--lanes":
+            lanes = int(args[i + 1])
             i += 2
         elif args[i] == "--fma-per-cycle":
             fma_per_cycle = int(args[i + 1])
@@ -87,7 +90,7 @@ def main():
         else:
             n = int(args[i])
             i += 1
-    per_joint, tail, total = count(n)
+    per_joint, tail, total = count(n, lanes)
     flops = total["mul"] + total["add"]
     # With every add fused into a multiply (FMA), the multiplies alone need
     # mul / fma_per_cycle cycles on the FMA pipes; more adds than multiplies would need
@@ -95,6 +98,7 @@ def main():
     cycles = max(total["mul"], total["add"]) / fma_per_cycle
     out = {
         "n": n,
+        "lanes": lanes,
         "per_joint": per_joint,
         "tail": tail,
         "total": total,

@@ -356,20 +356,51 @@ pub fn unit_sphere_point<T: Real>(n_steps: usize, i: usize, j: usize) -> Vec3<T>
     Vec3::new(sp * ct, sp * st, cp)
 }
 
-/// Fills `out` with `f(unit_sphere_point(n_steps, i, j))`, row-major. The caller has
-/// checked `out.len() ≥ n_steps²`.
+/// Fills `out` with `f(unit_sphere_point(n_steps, i, j))`, row-major: `out[i·n + j]` for
+/// `i, j < n_steps`, and nothing else. The callers have checked `n_steps ≥ 2` and
+/// `out.len() ≥ n_steps²` ([`grid_len`]); otherwise the first `min(out.len(), n_steps²)`
+/// points are written, in the same order (never a panic).
+///
+/// Method: the row's sin/cos φ is computed once per row and the column's sin/cos θ once
+/// per column (2n trigonometric calls instead of n² + n), with the same expressions as
+/// [`unit_sphere_point`], so the points are bit-identical to it. The column values are
+/// kept, without allocation, in the slots of the last row (as `(cos θ, sin θ, 0)`), which
+/// is filled last: each of its slots is read just before it is overwritten. `f` has a
+/// single call site, so that it inlines into the loop.
 #[inline]
 fn fill_grid<T: Real>(n_steps: usize, out: &mut [Vec3<T>], mut f: impl FnMut(&Vec3<T>) -> Vec3<T>) {
-    // The same values as unit_sphere_point, with the row's sin/cos φ computed once.
     let den = T::from_usize(n_steps.max(2) - 1);
-    let mut slots = out.iter_mut();
+    let phi = |i: usize| (T::from_usize(i) * (T::PI() / den)).sin_cos_r();
+    let theta = |j: usize| (T::from_usize(j) * ((T::PI() + T::PI()) / den)).sin_cos_r();
+    let total = n_steps.checked_mul(n_steps);
+    let count = total.map_or(out.len(), |t| t.min(out.len()));
+    // The column cache needs the whole grid (always the case from the public functions).
+    let cache = match total {
+        Some(t) if n_steps >= 2 && t <= out.len() => Some(t - n_steps),
+        _ => None,
+    };
+    if let Some(base) = cache {
+        for (j, slot) in out[base..base + n_steps].iter_mut().enumerate() {
+            let (st, ct) = theta(j);
+            *slot = Vec3::new(ct, st, T::ZERO);
+        }
+    }
+    let mut k = 0;
     for i in 0..n_steps {
-        let (sp, cp) = (T::from_usize(i) * (T::PI() / den)).sin_cos_r();
+        let (sp, cp) = phi(i);
         for j in 0..n_steps {
-            let (st, ct) = (T::from_usize(j) * ((T::PI() + T::PI()) / den)).sin_cos_r();
-            if let Some(slot) = slots.next() {
-                *slot = f(&Vec3::new(sp * ct, sp * st, cp));
+            if k >= count {
+                return;
             }
+            let (ct, st) = match cache {
+                Some(base) => (out[base + j].0[0], out[base + j].0[1]),
+                None => {
+                    let (st, ct) = theta(j);
+                    (ct, st)
+                }
+            };
+            out[k] = f(&Vec3::new(sp * ct, sp * st, cp));
+            k += 1;
         }
     }
 }
@@ -441,13 +472,14 @@ pub fn to_ellipsoid<T: Real>(
 ///
 /// Differences: negative eigenvalues are clamped to 0 (the reference takes `sqrt` of
 /// rounding-noise negatives and returns an all-NaN grid for covariances of rank < 3;
-/// ours never does); Exp is [`se3::exp`], accurate for tiny rotations (the reference's
-/// batch exp loses `ε·‖v‖/‖ω‖`, MATH.md §2.3); the eigenvectors are ours, so the grid
-/// points are those of the reference up to the eigenvector signs (the surface is the
-/// same). [`to_projected_ellipsoid_from_eigen`] takes a given eigen basis.
+/// ours never does); `p(E)` is [`se3::exp_translation`] (the translation of [`se3::exp`]),
+/// accurate for tiny rotations (the reference's batch exp loses `ε·‖v‖/‖ω‖`, MATH.md
+/// §2.3); the eigenvectors are ours, so the grid points are those of the reference up to
+/// the eigenvector signs (the surface is the same). [`to_projected_ellipsoid_from_eigen`]
+/// takes a given eigen basis.
 ///
 /// Accuracy, relative to `max(1, max|y|)`, given the reference's eigen basis: f64
-/// ≤ 10⁻¹² (observed 1.5·10⁻¹⁴ on the 200 golden cases; the reference's batch-exp
+/// ≤ 10⁻¹² (observed 7.4·10⁻¹⁵ on the 200 golden cases; the reference's batch-exp
 /// error never showed there); f32 ≤ 8·ε₃₂·(1 + r), r = factor·√λ₀ the largest
 /// perturbation (its rounding enters sin/cos), observed 1.0·10⁻⁶. With our own eigen
 /// basis add the eigenvector error `ε·‖Σ‖/gap` times r.
@@ -493,18 +525,37 @@ pub fn to_projected_ellipsoid_from_eigen<T: Real>(
     for (r, l) in radii.iter_mut().zip(values.0.iter()) {
         *r = factor * l.max(T::ZERO).sqrt();
     }
-    fill_grid(n_steps, out, |u| {
-        let mut xi = Vec6::zeros();
-        for (x, vrow) in xi.0.iter_mut().zip(vectors.0.iter()) {
-            *x = u.0[0] * radii[0] * vrow[0]
-                + u.0[1] * radii[1] * vrow[1]
-                + u.0[2] * radii[2] * vrow[2];
+    // ξ(u) = V₃·diag(radii)·u, with the rotation rows negated (exactly) for the (−ω, v)
+    // below: one 6×3 product per point.
+    let mut basis = Matrix::<T, 6, 3>::zeros();
+    for (r, (brow, vrow)) in basis.0.iter_mut().zip(vectors.0.iter()).enumerate() {
+        let sign = if r < 3 { -T::ONE } else { T::ONE };
+        for (c, b) in brow.iter_mut().enumerate() {
+            *b = sign * (radii[c] * vrow[c]);
         }
+    }
+    fill_grid(n_steps, out, |u| {
         // R(E)ᵀ·p(E) = Exp(ω)ᵀ·J(ω)·v = J(−ω)·v: the translation of Exp(−ω, v).
-        let c = se3::exp_translation(&Vec6::from_parts(-xi.rotation(), xi.translation()));
-        mean.rotation * c + mean.translation
+        transform3(mean, &se3::exp_translation(&mul3(&basis, u)))
     });
     Ok(n)
+}
+
+/// `m·x` for a matrix of three columns, each element summed as `m₀x₀ + m₁x₁ + m₂x₂`
+/// (the per-point products of the surfaces).
+#[inline(always)]
+fn mul3<T: Real, const R: usize>(m: &Matrix<T, R, 3>, x: &Vec3<T>) -> Vector<T, R> {
+    let [x0, x1, x2] = x.0;
+    Vector(core::array::from_fn(|r| {
+        let [m0, m1, m2] = m.0[r];
+        m0 * x0 + m1 * x1 + m2 * x2
+    }))
+}
+
+/// `R·x + p` ([`Transform::transform_point`] with the sums of [`mul3`]).
+#[inline(always)]
+fn transform3<T: Real>(t: &Transform<T>, x: &Vec3<T>) -> Vec3<T> {
+    mul3(&t.rotation, x) + t.translation
 }
 
 /// Checks that a pose and a covariance are finite.
@@ -612,15 +663,14 @@ impl<T: Real> LiftSurface<T> {
     /// The perturbation `ξ(s) = B·s` (rotation first) for a whitened tool displacement s.
     #[inline]
     pub fn perturbation(&self, s: &Vec3<T>) -> Vec6<T> {
-        self.basis.mul_vec(s)
+        mul3(&self.basis, s)
     }
 
-    /// The tool position `R̄·p(Exp(ξ(s))) + t̄` of `T̄·Exp(ξ(s))` ([`se3::exp`], accurate to
-    /// a few ε).
+    /// The tool position `R̄·p(Exp(ξ(s))) + t̄` of `T̄·Exp(ξ(s))` ([`se3::exp_translation`],
+    /// accurate to a few ε·‖v‖).
     #[inline]
     pub fn point(&self, s: &Vec3<T>) -> Vec3<T> {
-        self.mean
-            .transform_point(&se3::exp_translation(&self.perturbation(s)))
+        transform3(&self.mean, &se3::exp_translation(&self.perturbation(s)))
     }
 
     /// The surface at radius `k` (`‖s‖ = k`) on the unit-sphere grid (row-major, `n_steps²`

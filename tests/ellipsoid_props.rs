@@ -626,3 +626,268 @@ fn monte_carlo_second_order_mean() {
         "miss {miss} (shift {shift}, se {se})"
     );
 }
+
+// ---------------------------------------------------------------------------------------
+// se3::exp_translation: the translation J(ω)·v of Exp(ω, v) without the rotation matrix.
+
+use rand::Rng;
+
+/// An independent f64 reference for `J(ω)·v = v + a·(ω×v) + b·(ω×(ω×v))`: t by `hypot`,
+/// `1 − cos t` written without cancellation as `2·sin²(t/2)`, b by forward summation of its
+/// series (terms until they no longer change the sum) for t < 1.5; from 1.5 on the
+/// unit-axis form `v + (2·sin²(t/2)/t)·(u×v) + ((t − sin t)/t)·(u×(u×v))`, u = ω/t
+/// (`t − sin t` loses at most ≈ 3 ε there), which stays finite for huge t. Accurate to a
+/// few f64 ε·‖v‖·max(1, t).
+fn jv_ref(w: [f64; 3], v: [f64; 3]) -> [f64; 3] {
+    let cross = |x: [f64; 3], y: [f64; 3]| Vector(x).cross(&Vector(y)).0;
+    let t = w[0].hypot(w[1]).hypot(w[2]);
+    let s2 = |t: f64| 2.0 * (0.5 * t).sin().powi(2);
+    let (x, a, b) = if t == 0.0 {
+        (w, 0.5, 1.0 / 6.0)
+    } else if t < 1.5 {
+        let (mut term, mut sum, mut k) = (1.0 / 6.0, 1.0 / 6.0, 0.0);
+        let b = loop {
+            term *= -t * t / ((2.0 * k + 4.0) * (2.0 * k + 5.0));
+            k += 1.0;
+            if sum + term == sum {
+                break sum;
+            }
+            sum += term;
+        };
+        let q = (0.5 * t).sin() / t;
+        (w, 2.0 * q * q, b)
+    } else {
+        (w.map(|c| c / t), s2(t) / t, (t - t.sin()) / t)
+    };
+    let xv = cross(x, v);
+    let xxv = cross(x, xv);
+    core::array::from_fn(|i| v[i] + a * xv[i] + b * xxv[i])
+}
+
+/// A rotation vector of norm ≈ t (direction uniform on the sphere) and a translation of
+/// norm ≈ 10^(−3..3), rounded to T; returned with their f64 values.
+fn random_twist<T: Real>(rng: &mut ChaCha8Rng, t: f64) -> (Vec6<T>, [f64; 3], [f64; 3]) {
+    let dir = loop {
+        let d: [f64; 3] = core::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        if n > 0.1 && n <= 1.0 {
+            break d.map(|x| x / n);
+        }
+    };
+    let vs = 10f64.powf(rng.gen_range(-3.0..3.0));
+    let v: [f64; 3] = core::array::from_fn(|_| rng.gen_range(-1.0..1.0) * vs);
+    let xi: Vec6<T> = Vec6::from(core::array::from_fn(|i| {
+        T::lit(if i < 3 { dir[i] * t } else { v[i - 3] })
+    }));
+    let w = core::array::from_fn(|i| r64(xi.0[i]));
+    let v = core::array::from_fn(|i| r64(xi.0[3 + i]));
+    (xi, w, v)
+}
+
+/// Largest component difference, in units of ε·‖v‖ (‖v‖ of the rounded input).
+fn err_units<T: Real>(a: &Vec3<T>, b: [f64; 3], v: [f64; 3]) -> f64 {
+    let nv = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    (0..3)
+        .map(|i| (r64(a.0[i]) - b[i]).abs())
+        .fold(0.0, f64::max)
+        / (eps::<T>() * nv)
+}
+
+/// `exp_translation` against the independent reference and against the full
+/// `se3::exp(ξ).translation`, over t = ‖ω‖ in bands: 0, tiny, around `Real::SERIES`, the
+/// series range, t² within a few ulps of the switch point 4, the closed-form range, and
+/// huge angles whose square overflows. Returns the largest errors in units of ε·‖v‖
+/// (against the reference, against exp), each divided by max(1, t), and the largest error
+/// against the reference without that division.
+fn exp_translation_sweep<T: Real>(seed: u64, t_max: f64) -> (f64, f64, f64) {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let series = r64(T::SERIES);
+    let two = 2.0_f64;
+    let bands: [(f64, f64); 9] = [
+        (1e-30, 1e-10),
+        (1e-10, series),
+        (series * 0.5, series * 2.0),
+        (series, 0.1),
+        (0.1, 1.9),
+        (1.9, 2.1),
+        (2.1, 100.0),
+        (100.0, 1e5),
+        (1e5, t_max),
+    ];
+    let (mut worst_ref, mut worst_exp, mut worst_abs) = (0.0_f64, 0.0_f64, 0.0_f64);
+    let mut check = |xi: Vec6<T>, w: [f64; 3], v: [f64; 3]| {
+        let got = se3::exp_translation(&xi);
+        let t = w[0].hypot(w[1]).hypot(w[2]);
+        // Against the independent reference (f64: its own rounding, a few ε·‖v‖·max(1, t)
+        // from the f64 cross products, is included in the bound).
+        let e_abs = err_units::<T>(&got, jv_ref(w, v), v);
+        let e_ref = e_abs / t.max(1.0);
+        // Against se3::exp in the same precision; its closed form (t ≥ Real::SERIES)
+        // loses ≈ ε·‖v‖/(2t) in 1 − cos t, an error of the reference, not of ours.
+        let full = se3::exp(&xi).translation;
+        let loss = if t >= series { 1.0 / t } else { 0.0 };
+        let e_exp = err_units::<T>(&got, full.0.map(r64), v) / (t.max(1.0) + loss);
+        assert!(!(e_abs.is_nan() || e_exp.is_nan()), "{xi:?}: {got:?}");
+        worst_ref = worst_ref.max(e_ref);
+        worst_abs = worst_abs.max(e_abs);
+        worst_exp = worst_exp.max(e_exp);
+        assert!(got.is_finite());
+        (e_ref, e_exp)
+    };
+    for (lo, hi) in bands {
+        for _ in 0..20_000 {
+            let t = (lo.ln() + rng.gen::<f64>() * (hi.ln() - lo.ln())).exp();
+            let (xi, w, v) = random_twist::<T>(&mut rng, t);
+            check(xi, w, v);
+        }
+    }
+    // t² just below, at and just above 4 (both branches), and exactly zero ω.
+    for k in -64i32..=64 {
+        let t = two * (1.0 + f64::from(k) * eps::<T>() / 4.0);
+        for _ in 0..50 {
+            let (xi, w, v) = random_twist::<T>(&mut rng, t);
+            check(xi, w, v);
+        }
+        let axis: Vec6<T> = Vec6::from([
+            T::lit(t),
+            T::ZERO,
+            T::ZERO,
+            T::ONE,
+            T::lit(-0.5),
+            T::lit(0.25),
+        ]);
+        check(axis, [r64(axis.0[0]), 0.0, 0.0], [1.0, -0.5, 0.25]);
+    }
+    let (mut xi, _, v) = random_twist::<T>(&mut rng, 1.0);
+    xi.0[..3].fill(T::ZERO);
+    let (e_ref, e_exp) = check(xi, [0.0; 3], v);
+    assert!(e_ref == 0.0 && e_exp == 0.0, "ω = 0 must give v exactly");
+    (worst_ref, worst_exp, worst_abs)
+}
+
+/// Tolerance: both sides are a handful of roundings of quantities bounded by ‖v‖ (the
+/// cross products ω×v and ω×(ω×v) scaled by a ≤ ½ and b ≤ ⅙ for t ≤ 2; u×v, u×(u×v)
+/// scaled by (1 − cos t)/t ≤ 1 and (t − sin t)/t ≤ 1.5 above; sin/cos of the rounded t,
+/// whose rounding δt = ε·t moves (1 − cos t)/t and (t − sin t)/t by ≤ 3ε), plus the
+/// f64 reference's own rounding (for f32 inputs, which are exact in f64, that is ≈ 10⁻⁹ of
+/// ε₃₂ and the comparison measures the f32 rounding alone); counting them gives
+/// ≈ 10 ε·‖v‖·max(1, t) at worst. The bound is 16 ε (3.6·10⁻¹⁵ in f64, 1.9·10⁻⁶ in f32);
+/// the measured maxima are printed (1.6 and 1.2 ε·‖v‖·max(1, t) in f64 and f32; 4.6 and
+/// 4.1 ε·‖v‖).
+#[test]
+fn exp_translation_matches_exp() {
+    for (name, (e_ref, e_exp, e_abs)) in [
+        ("f64", exp_translation_sweep::<f64>(0xe7a1, 1e200)),
+        ("f32", exp_translation_sweep::<f32>(0xe7a2, 1e30)),
+    ] {
+        eprintln!(
+            "exp_translation {name}: max error / (ε·‖v‖·max(1, t)) = {e_ref:.2} vs reference, \
+             {e_exp:.2} vs se3::exp (whose 1 − cos t loss ε‖v‖/t is allowed for); \
+             max error / (ε·‖v‖) = {e_abs:.2} vs reference"
+        );
+        assert!(
+            e_ref <= 16.0,
+            "{name}: {e_ref} ε·‖v‖·max(1, t) from the reference"
+        );
+        assert!(
+            e_exp <= 16.0,
+            "{name}: {e_exp} ε·‖v‖·max(1, t) from se3::exp"
+        );
+        // The terms scale with ‖v‖ only ((1 − cos t)/t ≤ 1 and (t − sin t)/t ≤ 1.5 for
+        // any t), so the same bound holds without the factor max(1, t).
+        assert!(e_abs <= 16.0, "{name}: {e_abs} ε·‖v‖ from the reference");
+    }
+}
+
+/// Huge translations and non-finite input: exp_translation is finite wherever
+/// `se3::exp(ξ).translation` is, and NaN only where it is.
+#[test]
+fn exp_translation_extremes() {
+    fn check<T: Real>() {
+        let big = T::max_value();
+        let ws = [0.0, 1e-3, 1.0, 1.5, 2.0, 2.5, 1e3, 1e30].map(T::lit);
+        let vs = [
+            big,
+            big * T::HALF,
+            big * T::lit(0.25),
+            big * T::lit(1e-3),
+            T::lit(1.0),
+        ];
+        for &w in &ws {
+            for &vm in &vs {
+                for signs in 0..8u8 {
+                    let s = |bit: u8| {
+                        if signs >> bit & 1 == 1 {
+                            -T::ONE
+                        } else {
+                            T::ONE
+                        }
+                    };
+                    for xi in [
+                        Vec6::from([w, T::ZERO, w * T::HALF, vm * s(0), vm * s(1), vm * s(2)]),
+                        Vec6::from([T::ZERO, w * s(2), w, vm * s(0), -vm * s(1), T::ZERO]),
+                    ] {
+                        let got = se3::exp_translation(&xi);
+                        let full = se3::exp(&xi).translation;
+                        for i in 0..3 {
+                            assert!(
+                                !got.0[i].is_nan() || full.0[i].is_nan(),
+                                "{xi:?}: {got:?} vs {full:?}"
+                            );
+                        }
+                        if full.is_finite() {
+                            assert!(got.is_finite(), "{xi:?}: {got:?} vs {full:?}");
+                        }
+                    }
+                }
+            }
+        }
+        for bad in [T::nan(), T::infinity(), T::neg_infinity()] {
+            for i in 0..6 {
+                let mut xi = Vec6::from([T::lit(0.1); 6]);
+                xi.0[i] = bad;
+                assert!(!se3::exp_translation(&xi).is_finite());
+            }
+        }
+    }
+    check::<f32>();
+    check::<f64>();
+}
+
+/// The grid points are those of `unit_sphere_point`, bit for bit, in row-major order, and
+/// nothing beyond the `n²` points is written: the marginal surface of `Σ_vv = I` at the
+/// identity with k = 1 is the unit-sphere grid itself (`I·u + 0` is exact).
+#[test]
+fn grid_matches_unit_sphere_point() {
+    fn check<T: Real>() {
+        let cov = Mat6::<T>::identity();
+        let sentinel = Vec3::new(T::lit(7.0), T::lit(-7.0), T::lit(7.0));
+        for n in 2..=40 {
+            for extra in [0, 1, 5] {
+                let mut out = vec![sentinel; n * n + extra];
+                let written =
+                    marginal_surface(&Transform::identity(), &cov, T::ONE, n, &mut out).unwrap();
+                assert_eq!(written, n * n);
+                for i in 0..n {
+                    for j in 0..n {
+                        let u = ppoe::ellipsoid::unit_sphere_point::<T>(n, i, j);
+                        assert!(
+                            out[i * n + j] == u,
+                            "n {n} ({i}, {j}): {:?} vs {u:?}",
+                            out[i * n + j]
+                        );
+                    }
+                }
+                assert!(
+                    out[n * n..].iter().all(|p| *p == sentinel),
+                    "n {n}: wrote past n²"
+                );
+            }
+            let mut short = vec![sentinel; n * n - 1];
+            assert!(marginal_surface(&Transform::identity(), &cov, T::ONE, n, &mut short).is_err());
+            assert!(short.iter().all(|p| *p == sentinel));
+        }
+    }
+    check::<f32>();
+    check::<f64>();
+}
