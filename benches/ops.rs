@@ -181,6 +181,10 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     c.bench_function(&format!("ppoe_seed/ours_4th_order/{t}"), |b| {
         b.iter(|| chain.ppoe_fourth_order(black_box(&thetas), &covs, Convention::Right))
     });
+    // The rigid part alone: the same clipped displacements and their serial product.
+    c.bench_function(&format!("fk_seed/ours/{t}"), |b| {
+        b.iter(|| chain.forward_kinematics(black_box(&thetas)))
+    });
     // The nalgebra baseline, checked to give the same numbers first.
     let na = baseline_nalgebra::NaChain {
         screws: joints
@@ -350,6 +354,11 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
     v.push(op(format!("ppoe_seed/ours_4th_order/{t}"), move || {
         let chain = ChainRef { joints: &j2, home };
         chain.ppoe_fourth_order(black_box(&thetas), &covs, Convention::Right)
+    }));
+    let j3 = joints.clone();
+    v.push(op(format!("fk_seed/ours/{t}"), move || {
+        let chain = ChainRef { joints: &j3, home };
+        chain.forward_kinematics(black_box(&thetas))
     }));
     v.push(op(format!("ppoe_seed/nalgebra/{t}"), move || {
         baseline_nalgebra::ppoe(&na, black_box(&thetas), &na_covs)

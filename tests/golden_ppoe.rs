@@ -11,6 +11,7 @@
 mod common;
 use common::*;
 use ppoe::chain::{ChainRef, Convention};
+use ppoe::uncertainty::check_covariance;
 use ppoe::{Mat6, Real, Vec6, Vector};
 
 const F64_BOUND: f64 = 1e-12;
@@ -45,6 +46,7 @@ fn run<T: Real>(bound: f64, file: &str) {
         Worst::new(&format!("{file} cov left {ty}")),
     ];
     let is_f32 = Real::to_f64(T::EPS) > 1e-10;
+    let (mut psd_checked, mut n) = (0usize, 0usize);
     for c in g["cases"].as_array().unwrap() {
         let l = c["label"].as_str().unwrap();
         let thetas = vecf(&c["thetas"]);
@@ -90,10 +92,41 @@ fn run<T: Real>(bound: f64, file: &str) {
             rel_err(&flat(&up_m(&left.cov)), &flat(&mat6(&c["cov_left"]))),
             l,
         );
+        // Every output covariance is exactly symmetric (one triangle computed, mirrored),
+        // and PSD within check_covariance's tolerance when the inputs are PSD to working
+        // precision (an input indefinite within tolerance may stay so, see ppoe_checked).
+        let inputs_psd = covs.iter().all(psd_to_working_precision);
+        for (name, cov) in [
+            ("pytransform3d", &compat.cov),
+            ("right", &right.cov),
+            ("left", &left.cov),
+        ] {
+            assert_eq!(cov.asymmetry(), T::ZERO, "{file} {l}: {name} not symmetric");
+            if inputs_psd {
+                check_covariance(cov).unwrap_or_else(|e| panic!("{file} {l}: {name}: {e}"));
+            }
+        }
+        psd_checked += usize::from(inputs_psd);
+        n += 1;
     }
     for x in &w {
         x.check(bound);
     }
+    println!("{file} {ty}: outputs exactly symmetric; PSD checked in {psd_checked} of {n} cases");
+    // The golden set is built from PSD covariances (Gram matrices, diagonal, rank-deficient):
+    // the PSD check must not be vacuous.
+    assert!(
+        psd_checked * 2 > n,
+        "{file}: too few PSD input sets ({psd_checked} of {n})"
+    );
+}
+
+/// `sym(Σ) + (64·ε·‖Σ‖_max + MIN_POSITIVE)·I` has a Cholesky factor: λ_min ≥ −64·ε·‖Σ‖_max.
+fn psd_to_working_precision<T: Real>(c: &Mat6<T>) -> bool {
+    let shift = T::lit(64.0) * T::EPS * c.amax() + T::min_positive_value();
+    (c.symmetrize() + Mat6::identity() * shift)
+        .cholesky()
+        .is_some()
 }
 
 #[test]
