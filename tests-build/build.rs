@@ -1,9 +1,20 @@
 //! Generates the robot tables this crate includes, exactly as a firmware's build script
 //! would.
 
-use ppoe_build::{Config, Scalar};
+use ppoe_build::codegen::{self, Scalar as S, Source};
+use ppoe_build::{Config, Scalar, Urdf};
+use std::fmt::Write as _;
+
+#[path = "gen/robots.rs"]
+mod robots;
+
+/// Random robots whose tables are generated and compiled (see `gen/robots.rs`).
+const RANDOM_ROBOTS: usize = 40;
 
 fn main() -> Result<(), ppoe_build::Error> {
+    println!("cargo:rerun-if-changed=build.rs");
+    println!("cargo:rerun-if-changed=gen/robots.rs");
+    random_tables();
     // The seed robot of pytransform3d's PPOE example, both scalar types.
     Config::new("../test_data/urdf/seed.urdf")
         .base("linkmount")
@@ -28,4 +39,56 @@ fn main() -> Result<(), ppoe_build::Error> {
         .name("TORSO")
         .write_to_out_dir("torso_table.rs")?;
     Ok(())
+}
+
+/// Writes `random_tables.rs`: for every random robot whose chain ppoe-build accepts, its
+/// table(s) exactly as `Config::write_to_out_dir` would generate them, and a `RANDOM` list
+/// pairing each table with its URDF text; robots it rejects go to `RANDOM_REJECTED` with
+/// the error kind, so the test can check that the run-time parse rejects them the same way.
+fn random_tables() {
+    let out_dir = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("OUT_DIR"));
+    let mut rng = robots::Rng::new(0x5eed_1234_abcd_0042);
+    let (mut src, mut list, mut rejected) = (String::new(), String::new(), String::new());
+    for k in 0..RANDOM_ROBOTS {
+        let (text, base, tip) = robots::robot(&mut rng, k);
+        let file = format!("random_{k}.urdf");
+        std::fs::write(out_dir.join(&file), &text).expect("write a random URDF");
+        let chain = match Urdf::parse(&text).and_then(|u| u.chain::<&str>(&base, &tip, None)) {
+            Ok(c) => c,
+            Err(e) => {
+                let _ = writeln!(
+                    rejected,
+                    "    (include_str!(concat!(env!(\"OUT_DIR\"), \"/{file}\")), {base:?}, {tip:?}, {:?}),",
+                    e.kind().name()
+                );
+                continue;
+            }
+        };
+        let source = Source {
+            file_name: file.clone(),
+            sha256: codegen::sha256_hex(text.as_bytes()),
+        };
+        let name = format!("RANDOM_{k}");
+        // Both scalar types when every value fits in f32, else the f64 table alone.
+        let (code, has_f32) = match codegen::generate(&chain, &name, S::Both, &source) {
+            Ok(c) => (c, true),
+            Err(_) => (
+                codegen::generate(&chain, &name, S::F64, &source).expect("f64 table"),
+                false,
+            ),
+        };
+        src += &code;
+        let f32_ref = if has_f32 {
+            format!("Some(ppoe::chain::ChainRef {{ joints: &{name}_F32.joints, home: {name}_F32.home }})")
+        } else {
+            "None".to_string()
+        };
+        let _ = writeln!(
+            list,
+            "    RandomTable {{ urdf: include_str!(concat!(env!(\"OUT_DIR\"), \"/{file}\")), base: {base:?}, tip: {tip:?}, f64: ppoe::chain::ChainRef {{ joints: &{name}.joints, home: {name}.home }}, f32: {f32_ref} }},"
+        );
+    }
+    src += &format!("\n/// The random robots' tables with their URDF text.\npub static RANDOM: &[RandomTable] = &[\n{list}];\n");
+    src += &format!("\n/// The random robots ppoe-build rejects: (URDF text, base, tip, error kind).\npub static RANDOM_REJECTED: &[(&str, &str, &str, &str)] = &[\n{rejected}];\n");
+    std::fs::write(out_dir.join("random_tables.rs"), src).expect("write random_tables.rs");
 }

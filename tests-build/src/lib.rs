@@ -4,13 +4,37 @@
 //! computes at run time.
 //!
 //! Tables: [`SEED`] and [`SEED_F32`] (the seed robot of pytransform3d's PPOE example,
-//! `linkmount` → `tcp`), [`GANTRY_F32`] (prismatic joints), [`TORSO`] (a single joint).
+//! `linkmount` → `tcp`), [`GANTRY_F32`] (prismatic joints), [`TORSO`] (a single joint), and
+//! [`RANDOM`]: 40 random robots (`gen/robots.rs`: every joint type, fixed joints between
+//! moving ones, rpy everywhere, unnormalised axes, hostile names, extreme finite numbers).
 #![no_std]
 #![forbid(unsafe_code)]
 
 include!(concat!(env!("OUT_DIR"), "/seed_table.rs"));
 include!(concat!(env!("OUT_DIR"), "/gantry_table.rs"));
 include!(concat!(env!("OUT_DIR"), "/torso_table.rs"));
+
+/// A table generated from a random URDF robot (`gen/robots.rs`) with the URDF text it came
+/// from: the tests parse the text at run time and compare.
+pub struct RandomTable {
+    /// The URDF text.
+    pub urdf: &'static str,
+    /// The base link.
+    pub base: &'static str,
+    /// The tip link.
+    pub tip: &'static str,
+    /// The f64 table.
+    pub f64: ppoe::chain::ChainRef<'static, f64>,
+    /// The f32 table, when every value fits in f32.
+    pub f32: Option<ppoe::chain::ChainRef<'static, f32>>,
+}
+
+#[allow(missing_docs, clippy::all)] // generated: every table has its own doc comment
+mod random {
+    use super::RandomTable;
+    include!(concat!(env!("OUT_DIR"), "/random_tables.rs"));
+}
+pub use random::{RANDOM, RANDOM_REJECTED};
 
 /// The tables are usable in constant expressions (no parsing, no allocation).
 const _: () = {

@@ -3,9 +3,10 @@
 
 #![allow(clippy::needless_range_loop)] // index loops read best for matrices
 
-use ppoe::chain::{Chain, Joint};
-use ppoe_build::{Config, RobotChain};
-use tests_build::{GANTRY_F32, SEED, SEED_F32, SEED_IN_FLASH, TORSO};
+use ppoe::chain::{Chain, ChainRef, Convention, Joint};
+use ppoe::Mat6;
+use ppoe_build::{Config, RobotChain, Urdf};
+use tests_build::{GANTRY_F32, RANDOM, RANDOM_REJECTED, SEED, SEED_F32, SEED_IN_FLASH, TORSO};
 
 fn urdf(name: &str) -> String {
     format!("{}/../test_data/urdf/{name}", env!("CARGO_MANIFEST_DIR"))
@@ -19,10 +20,9 @@ fn bits(x: f64) -> u64 {
     x.to_bits()
 }
 
-fn assert_f64_table<const N: usize>(table: &Chain<f64, N>, chain: &RobotChain) {
-    assert_eq!(table.base, chain.base);
-    assert_eq!(table.tip, chain.tip);
-    assert_eq!(N, chain.joints.len());
+/// The joints and home pose of an f64 table hold bit for bit the run-time values.
+fn assert_f64_values(table: &ChainRef<f64>, chain: &RobotChain) {
+    assert_eq!(table.joints.len(), chain.joints.len());
     for (t, c) in table.joints.iter().zip(&chain.joints) {
         assert_eq!(t.name, c.name);
         assert_eq!(t.kind, c.kind, "{}", c.name);
@@ -43,18 +43,15 @@ fn assert_f64_table<const N: usize>(table: &Chain<f64, N>, chain: &RobotChain) {
             assert_eq!(bits(home[r][k]), bits(chain.home[r][k]), "home[{r}][{k}]");
         }
     }
-    // The same as building the core chain at run time.
-    let built: Chain<f64, N> = chain.to_core_chain().unwrap();
-    assert_eq!(&built, table);
+    // The same as building the core joints at run time.
     let joints: Vec<Joint<f64>> = chain.to_core_joints();
-    assert_eq!(joints.as_slice(), table.joints.as_slice());
+    assert_eq!(joints.as_slice(), table.joints);
 }
 
-fn assert_f32_table<const N: usize>(table: &Chain<f32, N>, chain: &RobotChain) {
+/// The joints and home pose of an f32 table are the run-time values rounded to f32.
+fn assert_f32_values(table: &ChainRef<f32>, chain: &RobotChain) {
     let r = |x: f64| (x as f32).to_bits();
-    assert_eq!(table.base, chain.base);
-    assert_eq!(table.tip, chain.tip);
-    assert_eq!(N, chain.joints.len());
+    assert_eq!(table.joints.len(), chain.joints.len());
     for (t, c) in table.joints.iter().zip(&chain.joints) {
         assert_eq!(t.name, c.name);
         assert_eq!(t.kind, c.kind);
@@ -75,6 +72,22 @@ fn assert_f32_table<const N: usize>(table: &Chain<f32, N>, chain: &RobotChain) {
             assert_eq!(home[i][k].to_bits(), r(chain.home[i][k]), "home[{i}][{k}]");
         }
     }
+}
+
+fn assert_f64_table<const N: usize>(table: &Chain<f64, N>, chain: &RobotChain) {
+    assert_eq!(table.base, chain.base);
+    assert_eq!(table.tip, chain.tip);
+    assert_eq!(N, chain.joints.len());
+    assert_f64_values(&table.as_ref(), chain);
+    let built: Chain<f64, N> = chain.to_core_chain().unwrap();
+    assert_eq!(&built, table);
+}
+
+fn assert_f32_table<const N: usize>(table: &Chain<f32, N>, chain: &RobotChain) {
+    assert_eq!(table.base, chain.base);
+    assert_eq!(table.tip, chain.tip);
+    assert_eq!(N, chain.joints.len());
+    assert_f32_values(&table.as_ref(), chain);
 }
 
 #[test]
@@ -116,4 +129,70 @@ fn single_joint_table_equals_the_runtime_chain() {
     let chain = runtime("tree.urdf", "base_footprint", "torso");
     assert_eq!(chain.joint_names(), ["torso_yaw"]);
     assert_f64_table(&TORSO, &chain);
+}
+
+/// Tables of 40 random robots (`gen/robots.rs`: hostile names, extreme finite numbers, fixed
+/// joints, rpy everywhere, unnormalised axes) compiled into the crate hold the values of
+/// the chain parsed at run time from the same text, and give the same PPOE.
+#[test]
+fn random_robot_tables_equal_the_runtime_chain() {
+    assert_eq!(RANDOM.len() + RANDOM_REJECTED.len(), 40);
+    assert!(
+        RANDOM.len() >= 30,
+        "only {} random robots gave a table",
+        RANDOM.len()
+    );
+    let (mut with_f32, mut fixed, mut joints) = (0, 0, 0);
+    for t in RANDOM {
+        let chain = Urdf::parse(t.urdf)
+            .and_then(|u| u.chain::<&str>(t.base, t.tip, None))
+            .unwrap_or_else(|e| panic!("{}: {e}", t.urdf));
+        assert_eq!(chain.base, t.base);
+        assert_eq!(chain.tip, t.tip);
+        assert_f64_values(&t.f64, &chain);
+        if let Some(t32) = &t.f32 {
+            assert_f32_values(t32, &chain);
+            with_f32 += 1;
+        }
+        fixed += usize::from(t.urdf.contains("type=\"fixed\""));
+        joints += t.f64.joints.len();
+        // The table and the run-time chain give the same PPOE, bit for bit.
+        let n = t.f64.joints.len();
+        let thetas: Vec<f64> = (0..n).map(|i| 0.3 * i as f64 - 0.5).collect();
+        let covs: Vec<Mat6<f64>> = t
+            .f64
+            .joints
+            .iter()
+            .map(|j| ppoe::chain::screw_noise(&j.screw, 1e-4))
+            .collect();
+        let core_joints = chain.to_core_joints();
+        let runtime = ChainRef {
+            joints: &core_joints,
+            home: chain.home_transform(),
+        };
+        for conv in [Convention::Right, Convention::Left] {
+            let a = t.f64.ppoe(&thetas, &covs, conv).unwrap();
+            let b = runtime.ppoe(&thetas, &covs, conv).unwrap();
+            // Bitwise: with 1e200 lengths the covariance may overflow to ∞ or NaN alike.
+            let flat = |u: &ppoe::chain::UncertainPose<f64>| -> Vec<u64> {
+                let pose = u.pose.to_matrix4();
+                let p = pose.iter().flatten();
+                p.chain(u.cov.0.iter().flatten())
+                    .map(|x| x.to_bits())
+                    .collect()
+            };
+            assert_eq!(flat(&a), flat(&b), "{}", t.urdf);
+        }
+    }
+    println!(
+        "{} random robots: {} tables ({joints} joints, {fixed} with fixed joints, {with_f32} with an f32 table too)",
+        RANDOM.len() + RANDOM_REJECTED.len(),
+        RANDOM.len()
+    );
+    for (urdf, base, tip, kind) in RANDOM_REJECTED {
+        let e = Urdf::parse(urdf)
+            .and_then(|u| u.chain::<&str>(base, tip, None))
+            .expect_err("rejected at build time");
+        assert_eq!(e.kind().name(), *kind);
+    }
 }
