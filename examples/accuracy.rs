@@ -12,53 +12,25 @@
 //! Progress and the run time go to standard error (they are not part of the report).
 
 use ppoe::chain::{screw_noise, ChainRef, Convention};
-use ppoe::uncertainty::{self, Order};
 use ppoe::{se3, Mat6, Matrix, Transform, Vec6, Vector};
-use rand::{Rng, SeedableRng};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use std::fmt::Write as _;
+use serde_json::Value;
 use std::time::Instant;
 
-// Golden-file loading, the chain loader and the error measures are the tests' own
-// (tests/common): one implementation for the tests and this report.
+// Golden-file loading, the chain loader, the error measures, the sampler and the sampled
+// models are the tests' own (tests/common): one implementation for the tests and this
+// report.
 #[path = "../tests/common/mod.rs"]
 mod common;
-use common::{chain_from_golden, flat, frob_rel, golden, mat6, rel_err, vec_n, vecf};
+use common::{
+    chain_from_golden, flat, frob_rel, golden, mat6, rel_err, seed_covs, vec_n, vecf, ChainModel,
+    Gaussian6, TwoPose, PPOE_FILES,
+};
 
 // ---------------------------------------------------------------------------------------
 // Sampling.
 // ---------------------------------------------------------------------------------------
-
-/// A sampler of N(0, Σ) for a PSD Σ: Cholesky of Σ + (1e-14·max|Σ| + 1e-300)·I (exact for
-/// PD Σ; rank-deficient Σ get a diagonal shift far below the sampling error). Standard
-/// normals by Box–Muller with the `libm` crate's `log`/`sincos` (pure Rust, so the sample
-/// stream does not depend on the platform's math library).
-struct Gaussian6 {
-    l: Mat6<f64>,
-}
-
-impl Gaussian6 {
-    fn new(cov: &Mat6<f64>) -> Self {
-        let shift = cov.amax() * 1e-14 + 1e-300;
-        let l = (*cov + Mat6::identity() * shift)
-            .cholesky()
-            .expect("PSD covariance");
-        Self { l }
-    }
-
-    fn sample(&self, rng: &mut impl Rng) -> Vec6<f64> {
-        let mut z = [0.0; 6];
-        for pair in z.chunks_exact_mut(2) {
-            let u1 = 1.0 - rng.gen::<f64>(); // (0, 1]
-            let u2 = rng.gen::<f64>();
-            let r = (-2.0 * libm::log(u1)).sqrt();
-            let (s, c) = libm::sincos(2.0 * std::f64::consts::PI * u2);
-            pair[0] = r * c;
-            pair[1] = r * s;
-        }
-        self.l * Vector(z)
-    }
-}
 
 /// Accumulates the second moment E[x xᵀ] about zero of 6-vectors, the sampling standard
 /// error of that estimate (from the fourth moments), and the two half-sample moments.
@@ -127,10 +99,37 @@ impl Moments {
         let nm: f64 = flat(&m).iter().map(|x| x * x).sum();
         (d / nm).sqrt() / 2.0
     }
+
+    /// The errors of the 2nd- and 4th-order covariances against the sampled moment.
+    fn errors(&self, c2: &Mat6<f64>, c4: &Mat6<f64>) -> Errors {
+        let mc = self.moment();
+        Errors {
+            e2: frob_rel(c2, &mc),
+            e4: frob_rel(c4, &mc),
+            floor: self.floor(),
+            split: self.split_half(),
+        }
+    }
 }
 
-/// Samples the PPOE model T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M and accumulates the moments of the
-/// right perturbation η = Log(T̄⁻¹·T).
+/// The numbers of one Monte Carlo row.
+struct Errors {
+    e2: f64,
+    e4: f64,
+    floor: f64,
+    split: f64,
+}
+
+impl Errors {
+    /// The four table cells: 2nd order, 4th order, MC floor, split/2.
+    fn cells(&self) -> [String; 4] {
+        [self.e2, self.e4, self.floor, self.split].map(sig3)
+    }
+}
+
+/// Samples the PPOE model T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M (standard normals by Box–Muller, see
+/// [`Gaussian6::box_muller`]) and accumulates the moments of the right perturbation
+/// η = Log(T̄⁻¹·T).
 fn sample_chain(
     chain: &ChainRef<f64>,
     thetas: &[f64],
@@ -138,22 +137,12 @@ fn sample_chain(
     n: usize,
     seed: u64,
 ) -> Moments {
-    let gs: Vec<Gaussian6> = covs.iter().map(Gaussian6::new).collect();
-    let ds: Vec<Transform<f64>> = chain
-        .joints
-        .iter()
-        .zip(thetas)
-        .map(|(j, t)| j.displacement(j.clip(*t, false)))
-        .collect();
+    let model = ChainModel::new(chain, thetas, covs, Gaussian6::box_muller);
     let mean_inv = chain.forward_kinematics(thetas).unwrap().inverse();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut m = Moments::new(n);
     for _ in 0..n {
-        let mut t = Transform::identity();
-        for (d, g) in ds.iter().zip(&gs) {
-            t = t * *d * se3::exp(&g.sample(&mut rng));
-        }
-        m.add(&se3::log(&(mean_inv * t * chain.home)));
+        m.add(&se3::log(&(mean_inv * model.draw(&mut rng) * chain.home)));
     }
     m
 }
@@ -188,10 +177,6 @@ fn fmt_thetas(t: &[f64]) -> String {
     format!("[{}]", parts.join(", "))
 }
 
-fn diag(d: [f64; 6]) -> Mat6<f64> {
-    Mat6::from_diagonal(&Vector(d))
-}
-
 // ---------------------------------------------------------------------------------------
 // Part 1: PPOE against Monte Carlo on the seed and test robots.
 // ---------------------------------------------------------------------------------------
@@ -214,29 +199,22 @@ struct Case {
     noise: String,
 }
 
-/// The seed's joint covariances (MATH.md §5.3).
-fn seed_covs() -> Vec<Mat6<f64>> {
-    let z = diag([0.0, 0.0, 0.05, 0.0, 0.0, 0.0]);
-    let y = diag([0.0, 0.05, 0.0, 0.0, 0.0, 0.0]);
-    vec![z, y, y, Mat6::zeros(), y, Mat6::zeros()]
+/// The elements of a JSON array.
+fn items(v: &Value) -> std::slice::Iter<'_, Value> {
+    v.as_array().unwrap().iter()
 }
 
 fn cases(sigma2: f64) -> Vec<Case> {
     let mut out = Vec::new();
     let seed = golden("ppoe/seed_linkmount_tcp.json");
     for frame in ["frame_0", "frame_100"] {
-        let c = seed["cases"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|c| c["label"] == frame)
-            .unwrap();
+        let c = items(&seed["cases"]).find(|c| c["label"] == frame).unwrap();
         out.push(Case {
             name: format!("seed ({})", frame.replace('_', " ")),
             file: "seed_linkmount_tcp",
             label: frame.into(),
             thetas: vecf(&c["thetas"]),
-            covs: seed_covs(),
+            covs: seed_covs(1.0),
             noise: "seed (MATH.md §5.3)".into(),
         });
     }
@@ -247,17 +225,9 @@ fn cases(sigma2: f64) -> Vec<Case> {
         "fixed_between_world_tool_tip",
     ] {
         let g = golden(&format!("ppoe/{file}.json"));
-        let lim: Vec<[f64; 2]> = g["limits"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(vec_n::<2>)
-            .collect();
+        let lim: Vec<[f64; 2]> = items(&g["limits"]).map(vec_n::<2>).collect();
         // The first case whose joint values are all drawn inside the limits.
-        let c = g["cases"]
-            .as_array()
-            .unwrap()
-            .iter()
+        let c = items(&g["cases"])
             .find(|c| {
                 c["label"].as_str().unwrap().contains("_inside_")
                     && vecf(&c["thetas"])
@@ -266,12 +236,7 @@ fn cases(sigma2: f64) -> Vec<Case> {
                         .all(|(t, l)| *t > l[0] && *t < l[1])
             })
             .unwrap();
-        let screws: Vec<[f64; 6]> = g["screw_axes"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(vec_n::<6>)
-            .collect();
+        let screws: Vec<[f64; 6]> = items(&g["screw_axes"]).map(vec_n::<6>).collect();
         out.push(Case {
             name: file.into(),
             file,
@@ -290,10 +255,7 @@ fn cases(sigma2: f64) -> Vec<Case> {
 struct Row {
     scale: &'static str,
     seed: u64,
-    e2: f64,
-    e4: f64,
-    floor: f64,
-    split: f64,
+    err: Errors,
 }
 
 fn part1(cases: &[Case], n: usize) -> Vec<Vec<Row>> {
@@ -311,30 +273,26 @@ fn part1(cases: &[Case], n: usize) -> Vec<Vec<Row>> {
             let covs: Vec<Mat6<f64>> = case.covs.iter().map(|c| *c * *scale).collect();
             let t0 = Instant::now();
             let m = sample_chain(&chain, &case.thetas, &covs, n, seed);
-            let mc = m.moment();
             let c2 = chain.ppoe(&case.thetas, &covs, Convention::Right).unwrap();
             let c4 = chain
                 .ppoe_fourth_order(&case.thetas, &covs, Convention::Right)
                 .unwrap();
-            let row = Row {
-                scale: label,
-                seed,
-                e2: frob_rel(&c2.cov, &mc),
-                e4: frob_rel(&c4.cov, &mc),
-                floor: m.floor(),
-                split: m.split_half(),
-            };
+            let err = m.errors(&c2.cov, &c4.cov);
             eprintln!(
                 "{:<32} x{:<5} 2nd {:.4} 4th {:.4} floor {:.4} split {:.4} ({:.2} s)",
                 case.name,
                 label,
-                row.e2,
-                row.e4,
-                row.floor,
-                row.split,
+                err.e2,
+                err.e4,
+                err.floor,
+                err.split,
                 t0.elapsed().as_secs_f64()
             );
-            rows.push(row);
+            rows.push(Row {
+                scale: label,
+                seed,
+                err,
+            });
         }
         all.push(rows);
     }
@@ -350,63 +308,32 @@ const ALPHAS: [f64; 6] = [0.01, 0.1, 0.25, 0.5, 0.75, 1.0];
 struct BfRow {
     alpha: f64,
     seed: u64,
-    e2: f64,
-    e4: f64,
-    floor: f64,
-    split: f64,
+    err: Errors,
 }
 
-/// ξ₁ = (π/6,0,0 | 0,2,0), ξ₂ = (0,π/4,0 | 0,0,1), Σ = α·diag(½,1,½ | 10,5,5) for both;
-/// global model Exp(ξ')·T̄ = Exp(ξ₂)·T₂·Exp(ξ₁)·T₁.
+/// [`TwoPose::barfoot_furgale`] with Σ = α·diag(½,1,½ | 10,5,5) for both, α from
+/// [`ALPHAS`].
 fn part2(n: usize) -> Vec<BfRow> {
-    let t1 = se3::exp(&Vector([
-        std::f64::consts::FRAC_PI_6,
-        0.0,
-        0.0,
-        0.0,
-        2.0,
-        0.0,
-    ]));
-    let t2 = se3::exp(&Vector([
-        0.0,
-        std::f64::consts::FRAC_PI_4,
-        0.0,
-        0.0,
-        0.0,
-        1.0,
-    ]));
-    let mean = t2 * t1;
-    let inv = mean.inverse();
+    let bf = TwoPose::barfoot_furgale();
     ALPHAS
         .iter()
         .enumerate()
         .map(|(i, &alpha)| {
             let seed = 2000 + i as u64;
-            let s = diag([0.5, 1.0, 0.5, 10.0, 5.0, 5.0]) * alpha;
-            let g = Gaussian6::new(&s);
+            let s = TwoPose::cov(alpha);
+            let g = Gaussian6::box_muller(&s);
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
             let mut m = Moments::new(n);
             for _ in 0..n {
-                let x1 = g.sample(&mut rng);
-                let x2 = g.sample(&mut rng);
-                m.add(&se3::log(&(se3::exp(&x2) * t2 * se3::exp(&x1) * t1 * inv)));
+                m.add(&bf.draw(&g, &mut rng));
             }
-            let mc = m.moment();
-            let (_, c2) = uncertainty::concat_globally(&t1, &s, &t2, &s, Order::Second);
-            let (_, c4) = uncertainty::concat_globally(&t1, &s, &t2, &s, Order::Fourth);
-            let row = BfRow {
-                alpha,
-                seed,
-                e2: frob_rel(&c2, &mc),
-                e4: frob_rel(&c4, &mc),
-                floor: m.floor(),
-                split: m.split_half(),
-            };
+            let (c2, c4) = bf.concat(&s);
+            let err = m.errors(&c2, &c4);
             eprintln!(
                 "BF alpha {alpha:<5} 2nd {:.4} 4th {:.4} floor {:.4} split {:.4}",
-                row.e2, row.e4, row.floor, row.split
+                err.e2, err.e4, err.floor, err.split
             );
-            row
+            BfRow { alpha, seed, err }
         })
         .collect()
 }
@@ -414,17 +341,6 @@ fn part2(n: usize) -> Vec<BfRow> {
 // ---------------------------------------------------------------------------------------
 // Part 3: f32 against f64 over the golden set.
 // ---------------------------------------------------------------------------------------
-
-const FILES: [&str; 8] = [
-    "seed_linkmount_tcp",
-    "prismatic_base_link_tool0",
-    "fixed_between_world_tool_tip",
-    "continuous_base_ee",
-    "rpy_everywhere_base_tool",
-    "rpy_everywhere_link2_tool",
-    "tree_base_footprint_left_tip",
-    "tree_base_footprint_right_tip",
-];
 
 /// Worst (with its case label) and median of a list of errors.
 struct Stat {
@@ -478,7 +394,7 @@ fn pose64(t: &Transform<f64>) -> Vec<f64> {
 }
 
 fn part3() -> Vec<F32Row> {
-    FILES
+    PPOE_FILES
         .iter()
         .map(|&file| {
             let g = golden(&format!("ppoe/{file}.json"));
@@ -494,14 +410,14 @@ fn part3() -> Vec<F32Row> {
             };
             let (mut pose, mut cov2, mut cov4) = (Vec::new(), Vec::new(), Vec::new());
             let mut skipped = 0;
-            for c in g["cases"].as_array().unwrap() {
+            for c in items(&g["cases"]) {
                 let label = c["label"].as_str().unwrap().to_string();
                 let th = vecf(&c["thetas"]);
                 if th.iter().any(|t| t.abs() > 10.0) {
                     skipped += 1;
                     continue;
                 }
-                let covs: Vec<Mat6<f64>> = c["covs"].as_array().unwrap().iter().map(mat6).collect();
+                let covs: Vec<Mat6<f64>> = items(&c["covs"]).map(mat6).collect();
                 let th32: Vec<f32> = th.iter().map(|x| *x as f32).collect();
                 let covs32: Vec<Mat6<f32>> = covs
                     .iter()
@@ -540,6 +456,44 @@ fn part3() -> Vec<F32Row> {
 // Report.
 // ---------------------------------------------------------------------------------------
 
+/// The report, line by line.
+#[derive(Default)]
+struct Doc(String);
+
+impl Doc {
+    fn line(&mut self, t: &str) {
+        self.0.push_str(t);
+        self.0.push('\n');
+    }
+
+    /// `t` and a blank line.
+    fn para(&mut self, t: &str) {
+        self.line(t);
+        self.line("");
+    }
+
+    /// A Markdown table (header, rule, rows) and a blank line.
+    fn table(&mut self, header: &[&str], rows: impl IntoIterator<Item = Vec<String>>) {
+        self.line(&format!("| {} |", header.join(" | ")));
+        self.line(&format!("|{}", "---|".repeat(header.len())));
+        for row in rows {
+            self.line(&format!("| {} |", row.join(" | ")));
+        }
+        self.line("");
+    }
+}
+
+/// The columns of a Monte Carlo table after the first one(s) that name the row.
+const MC_COLUMNS: [&str; 5] = ["seed", "2nd order", "4th order", "MC floor", "split/2"];
+
+/// The cells of a Monte Carlo table row: `first`, then [`MC_COLUMNS`].
+fn mc_row(first: &[String], seed: u64, err: &Errors) -> Vec<String> {
+    let mut row = first.to_vec();
+    row.push(seed.to_string());
+    row.extend(err.cells());
+    row
+}
+
 fn report(
     n: usize,
     sigma2: f64,
@@ -548,7 +502,7 @@ fn report(
     p2: &[BfRow],
     p3: &[F32Row],
 ) -> String {
-    let mut s = String::new();
+    let mut d = Doc::default();
     let cmd = if n == 100_000 && sigma2 == DEFAULT_SIGMA2 {
         "scripts/accuracy.sh".to_string()
     } else {
@@ -556,19 +510,9 @@ fn report(
             "cargo run --release --example accuracy -- --samples {n} --sigma2 {sigma2} --out ACCURACY.md"
         )
     };
-    let w = |s: &mut String, t: &str| {
-        s.push_str(t);
-        s.push('\n');
-    };
-    w(&mut s, "# Accuracy of the PPOE");
-    w(&mut s, "");
-    w(
-        &mut s,
-        "<!-- Generated by examples/accuracy.rs; do not edit by hand. -->",
-    );
-    w(&mut s, "");
-    let _ = writeln!(
-        s,
+    d.para("# Accuracy of the PPOE");
+    d.para("<!-- Generated by examples/accuracy.rs; do not edit by hand. -->");
+    d.para(&format!(
         "Regenerate with `{cmd}` (equivalently `cargo run --release --example accuracy -- \
          --samples {n} --out ACCURACY.md`). Every Monte Carlo row below has its own fixed \
          seed (`rand_chacha::ChaCha8Rng::seed_from_u64(seed)`, standard normals by \
@@ -577,17 +521,14 @@ fn report(
          same file, byte for byte. (Across platforms, only a last-bit difference of a \
          system `acos`/`atan2` used inside `Log` could move a digit, far below the printed \
          precision.) Run time: under 10 s in release on a 2-core machine, plus the build."
-    );
-    w(&mut s, "");
-    w(&mut s, "Error measures:");
-    w(
-        &mut s,
+    ));
+    d.line("Error measures:");
+    d.line(
         "* **Monte Carlo error**: relative Frobenius error `‖Σ − M̂‖_F / ‖M̂‖_F` of the \
          analytic covariance Σ against the sampled second moment `M̂ = (1/N) Σₖ ηₖηₖᵀ` (about \
          zero, not about the sample mean) of the perturbation η.",
     );
-    w(
-        &mut s,
+    d.line(
         "* **MC floor**: the standard error of `M̂` itself in the same norm, \
          `√(Σᵢⱼ Var(ηᵢηⱼ)/N) / ‖M̂‖_F`, computed from the same samples (fourth moments). An \
          exact covariance would show about this error; a number near the floor means \
@@ -596,21 +537,14 @@ fn report(
          two halves of the samples, divided by 2 (one realisation, so it scatters around the \
          floor).",
     );
-    w(
-        &mut s,
+    d.para(
         "* **f32 vs f64**: `max|a − b| / max(1, max|b|)` over the 16 pose or 36 covariance \
          entries, a = f32 result (converted exactly to f64), b = f64 result.",
     );
-    w(&mut s, "");
 
     // Part 1.
-    w(
-        &mut s,
-        "## 1. PPOE covariance against Monte Carlo, as the joint noise grows",
-    );
-    w(&mut s, "");
-    w(
-        &mut s,
+    d.para("## 1. PPOE covariance against Monte Carlo, as the joint noise grows");
+    d.para(
         "Model (MATH.md §8): `T = D₁·Exp(ξ₁)·D₂·Exp(ξ₂)·…·Dₙ·Exp(ξₙ)·M`, `Dᵢ = Exp(Sᵢθᵢ)`, \
          ξᵢ ~ N(0, scale·Σᵢ), sampled N times; η = Log(T̄⁻¹·T) (right perturbation, tip \
          frame) compared with `ChainRef::ppoe(θ, covs, Convention::Right)` (**2nd** order) \
@@ -618,9 +552,7 @@ fn report(
          Barfoot–Furgale fourth-order compounding once per joint in the global form, then \
          `Ad(T̄⁻¹)`).",
     );
-    w(&mut s, "");
-    let _ = writeln!(
-        s,
+    d.para(&format!(
         "Noise at scale ×1: the seed's covariances for the seed robot (0.05 rad² about \
          the base z axis for joint1 and about the base y axis for joints 2, 3, 5; zero for \
          joints 4 and 6); for the other robots joint-value noise `screw_noise(Sᵢ, σ²) = \
@@ -631,43 +563,28 @@ fn report(
          inside the limits (listed below the table). Seed of row (robot r, scale s) = 1000 + \
          10·r + s (r, s from 0 in table order).",
         sigma2.sqrt()
+    ));
+    d.table(
+        &[&["robot", "noise scale"][..], &MC_COLUMNS].concat(),
+        cases.iter().zip(p1).flat_map(|(case, rows)| {
+            rows.iter().map(|r| {
+                let first = [case.name.clone(), format!("×{}", r.scale)];
+                mc_row(&first, r.seed, &r.err)
+            })
+        }),
     );
-    w(&mut s, "");
-    w(
-        &mut s,
-        "| robot | noise scale | seed | 2nd order | 4th order | MC floor | split/2 |",
-    );
-    w(&mut s, "|---|---|---|---|---|---|---|");
-    for (case, rows) in cases.iter().zip(p1) {
-        for r in rows {
-            let _ = writeln!(
-                s,
-                "| {} | ×{} | {} | {} | {} | {} | {} |",
-                case.name,
-                r.scale,
-                r.seed,
-                sig3(r.e2),
-                sig3(r.e4),
-                sig3(r.floor),
-                sig3(r.split)
-            );
-        }
-    }
-    w(&mut s, "");
-    w(&mut s, "Joint values and noise:");
-    w(&mut s, "");
+    d.para("Joint values and noise:");
     for case in cases {
-        let _ = writeln!(
-            s,
+        d.line(&format!(
             "* {}: `test_data/golden/ppoe/{}.json` case `{}`, θ = {}; noise {}.",
             case.name,
             case.file,
             case.label,
             fmt_thetas(&case.thetas),
             case.noise
-        );
+        ));
     }
-    w(&mut s, "");
+    d.line("");
     // Key numbers, generated.
     let find = |name: &str, scale: &str| -> Option<&Row> {
         cases
@@ -678,45 +595,39 @@ fn report(
     };
     if let Some(r) = find("seed (frame 0)", "4") {
         // Worst ratio to the floor up to ×4, per order, over all robots.
-        let ratio = |f: fn(&Row) -> f64| {
+        let ratio = |f: fn(&Errors) -> f64| {
             p1.iter()
                 .flat_map(|rows| rows.iter().filter(|r| r.scale != "16"))
-                .map(|r| f(r) / r.floor)
+                .map(|r| f(&r.err) / r.err.floor)
                 .fold(0.0f64, f64::max)
         };
-        let max16 = |f: fn(&Row) -> f64| {
+        let max16 = |f: fn(&Errors) -> f64| {
             p1.iter()
                 .flat_map(|rows| rows.iter().filter(|r| r.scale == "16"))
-                .map(f)
+                .map(|r| f(&r.err))
                 .fold(0.0f64, f64::max)
         };
-        let _ = writeln!(
-            s,
+        let [e2, e4, floor, _] = r.err.cells();
+        d.para(&format!(
             "Reading: on the seed robot (frame 0) at 4× the seed's noise the 2nd-order PPOE is \
-             {} off and the 4th-order option {} (MC floor {}); MATH.md §8 measured 0.064 → \
+             {e2} off and the 4th-order option {e4} (MC floor {floor}); MATH.md §8 measured 0.064 → \
              0.004 with 2·10⁵ samples. Up to ×4, over all robots, the 4th-order error is at \
              most {:.1}× the MC floor (the 2nd order: up to {:.1}×). At ×16 (0.8 rad² per \
              noisy seed joint, {} rad² per joint elsewhere, σ ≈ {:.2} rad) the 4th-order error reaches {} and the 2nd-order \
              one {} on the worst robot: the perturbations reach angles where terms beyond the \
              fourth order and the wrap of Log at π matter.",
-            sig3(r.e2),
-            sig3(r.e4),
-            sig3(r.floor),
-            ratio(|r| r.e4),
-            ratio(|r| r.e2),
+            ratio(|e| e.e4),
+            ratio(|e| e.e2),
             16.0 * sigma2,
             (16.0 * sigma2).sqrt(),
-            sig3(max16(|r| r.e4)),
-            sig3(max16(|r| r.e2))
-        );
-        w(&mut s, "");
+            sig3(max16(|e| e.e4)),
+            sig3(max16(|e| e.e2))
+        ));
     }
 
     // Part 2.
-    w(&mut s, "## 2. Barfoot & Furgale two-pose compounding sweep");
-    w(&mut s, "");
-    w(
-        &mut s,
+    d.para("## 2. Barfoot & Furgale two-pose compounding sweep");
+    d.para(
         "Barfoot & Furgale (IEEE T-RO 2014, §IV.C): ξ₁ = (π/6, 0, 0 | 0, 2, 0), \
          ξ₂ = (0, π/4, 0 | 0, 0, 1) (rotation first), T₁ = Exp(ξ₁), T₂ = Exp(ξ₂), \
          Σ₁ = Σ₂ = α·diag(½, 1, ½ | 10, 5, 5). Global model Exp(ξ')·T̄ = \
@@ -724,44 +635,24 @@ fn report(
          ξ' = Log(T·T̄⁻¹) against `uncertainty::concat_globally(T₁, Σ₁, T₂, Σ₂, Order::Second \
          | Order::Fourth)`. Seed of row i (from 0) = 2000 + i.",
     );
-    w(&mut s, "");
-    w(
-        &mut s,
-        "| α | seed | 2nd order | 4th order | MC floor | split/2 |",
+    d.table(
+        &[&["α"][..], &MC_COLUMNS].concat(),
+        p2.iter()
+            .map(|r| mc_row(&[r.alpha.to_string()], r.seed, &r.err)),
     );
-    w(&mut s, "|---|---|---|---|---|---|");
-    for r in p2 {
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {} | {} | {} |",
-            r.alpha,
-            r.seed,
-            sig3(r.e2),
-            sig3(r.e4),
-            sig3(r.floor),
-            sig3(r.split)
-        );
-    }
-    w(&mut s, "");
     if let Some(r) = p2.iter().find(|r| r.alpha == 1.0) {
-        let _ = writeln!(
-            s,
-            "Reading: at α = 1 the 2nd order is {} off and the 4th order {} (MC floor {}); \
+        let [e2, e4, floor, _] = r.err.cells();
+        d.para(&format!(
+            "Reading: at α = 1 the 2nd order is {e2} off and the 4th order {e4} (MC floor {floor}); \
              the 2nd-order error grows about linearly in α, the 4th-order one stays about an \
              order of magnitude lower (MATH.md §8 reports 17 % → 1.4 % at α = 1 for its \
              variant of this sweep).",
-            sig3(r.e2),
-            sig3(r.e4),
-            sig3(r.floor)
-        );
-        w(&mut s, "");
+        ));
     }
 
     // Part 3.
-    w(&mut s, "## 3. f32 against f64 over the golden set");
-    w(&mut s, "");
-    w(
-        &mut s,
+    d.para("## 3. f32 against f64 over the golden set");
+    d.para(
         "For every case of every golden PPOE file (`test_data/golden/ppoe/*.json`): the chain \
          (screw axes, home pose, limits) and the inputs (θ, covariances) rounded to f32, the \
          PPOE computed in f32, against the same computation in f64 from the unrounded \
@@ -773,28 +664,28 @@ fn report(
          generator (most of which the limits clip anyway); the medians include the cases \
          with zero covariances (error 0).",
     );
-    w(&mut s, "");
-    w(
-        &mut s,
-        "| golden file | cases (skipped) | pose worst | pose median | cov 2nd worst | cov 2nd median | cov 4th worst | cov 4th median |",
+    d.table(
+        &[
+            "golden file",
+            "cases (skipped)",
+            "pose worst",
+            "pose median",
+            "cov 2nd worst",
+            "cov 2nd median",
+            "cov 4th worst",
+            "cov 4th median",
+        ],
+        p3.iter().map(|r| {
+            let stats = [&r.pose, &r.cov2, &r.cov4];
+            [
+                format!("`{}`", r.file),
+                format!("{} ({})", r.used, r.skipped),
+            ]
+            .into_iter()
+            .chain(stats.iter().flat_map(|x| [sci(x.worst), sci(x.median)]))
+            .collect()
+        }),
     );
-    w(&mut s, "|---|---|---|---|---|---|---|---|");
-    for r in p3 {
-        let _ = writeln!(
-            s,
-            "| `{}` | {} ({}) | {} | {} | {} | {} | {} | {} |",
-            r.file,
-            r.used,
-            r.skipped,
-            sci(r.pose.worst),
-            sci(r.pose.median),
-            sci(r.cov2.worst),
-            sci(r.cov2.median),
-            sci(r.cov4.worst),
-            sci(r.cov4.median)
-        );
-    }
-    w(&mut s, "");
     let worst = |f: fn(&F32Row) -> &Stat| {
         p3.iter()
             .map(|r| (f(r).worst, r.file, f(r).worst_label.clone()))
@@ -806,16 +697,15 @@ fn report(
     let (wp, fp, lp) = worst(|r| &r.pose);
     let (wc, fc, lc) = worst(|r| &r.cov2);
     let (w4, f4, l4) = worst(|r| &r.cov4);
-    let _ = writeln!(
-        s,
+    d.line(&format!(
         "Worst over the set: pose {} (`{fp}`, `{lp}`), covariance {} (`{fc}`, `{lc}`), \
          4th-order covariance {} (`{f4}`, `{l4}`). The golden tests bound the f32 error by \
          1e-5 against the oracle.",
         sci(wp),
         sci(wc),
         sci(w4)
-    );
-    s
+    ));
+    d.0
 }
 
 /// Joint-value variance of the non-seed robots at scale ×1: the seed's per-joint 0.05 rad².

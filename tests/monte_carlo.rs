@@ -6,52 +6,23 @@
 mod common;
 use common::*;
 use ppoe::chain::{ChainRef, Convention};
-use ppoe::uncertainty::{self, Order};
+use ppoe::uncertainty;
 use ppoe::{se3, Mat6, Transform, Vec3, Vec6, Vector};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 const N: usize = 100_000;
 
-fn diag(d: [f64; 6]) -> Mat6<f64> {
-    Mat6::from_diagonal(&Vector(d))
-}
-
-/// Barfoot & Furgale (2014) two-pose compounding: ξ₁ = (π/6,0,0 | 0,2,0),
-/// ξ₂ = (0,π/4,0 | 0,0,1), Σ = α·diag(½,1,½ | 10,5,5) for both.
+/// Barfoot & Furgale (2014) two-pose compounding ([`TwoPose::barfoot_furgale`]),
+/// Σ = α·diag(½,1,½ | 10,5,5) for both: the (2nd, 4th)-order errors.
 fn bf_errors(alpha: f64, seed: u64) -> (f64, f64) {
-    let t1 = se3::exp(&Vector([
-        std::f64::consts::FRAC_PI_6,
-        0.0,
-        0.0,
-        0.0,
-        2.0,
-        0.0,
-    ]));
-    let t2 = se3::exp(&Vector([
-        0.0,
-        std::f64::consts::FRAC_PI_4,
-        0.0,
-        0.0,
-        0.0,
-        1.0,
-    ]));
-    let s = diag([0.5, 1.0, 0.5, 10.0, 5.0, 5.0]) * alpha;
+    let bf = TwoPose::barfoot_furgale();
+    let s = TwoPose::cov(alpha);
     let g = Gaussian6::new(&s);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mean = t2 * t1;
-    let inv = mean.inverse();
-    // Global model: Exp(ξ')·T̄ = Exp(ξ₂)·T₂·Exp(ξ₁)·T₁.
-    let samples: Vec<Vec6<f64>> = (0..N)
-        .map(|_| {
-            let x1 = g.sample(&mut rng);
-            let x2 = g.sample(&mut rng);
-            se3::log(&(se3::exp(&x2) * t2 * se3::exp(&x1) * t1 * inv))
-        })
-        .collect();
+    let samples: Vec<Vec6<f64>> = (0..N).map(|_| bf.draw(&g, &mut rng)).collect();
     let mc = second_moment(&samples);
-    let (_, c2) = uncertainty::concat_globally(&t1, &s, &t2, &s, Order::Second);
-    let (_, c4) = uncertainty::concat_globally(&t1, &s, &t2, &s, Order::Fourth);
+    let (c2, c4) = bf.concat(&s);
     (frob_rel(&c2, &mc), frob_rel(&c4, &mc))
 }
 

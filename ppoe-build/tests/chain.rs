@@ -185,58 +185,36 @@ fn joint(name: &str, ty: &str, parent: &str, child: &str, inner: &str) -> String
     )
 }
 
+/// A robot of the given links and joints (each from `joint`).
+fn robot_of(names: &[&str], joints: &[String]) -> String {
+    robot(&format!("{}{}", links(names), joints.concat()))
+}
+
 // ---------------------------------------------------------------------------------------
 // Leniency.
 
 #[test]
 fn whitespace_between_numbers_is_any_whitespace() {
-    let plain = robot(&format!(
-        "{}{}",
-        links(&["a", "b"]),
-        joint(
-            "j",
-            "revolute",
-            "a",
-            "b",
-            "<origin xyz=\"0.1 0.2 0.3\" rpy=\"0.4 0.5 0.6\"/><axis xyz=\"0 1 0\"/>"
-        )
-    ));
-    let spaced = robot(&format!(
-        "{}{}",
-        links(&["a", "b"]),
-        joint(
-            "j",
-            "revolute",
-            "a",
-            "b",
-            "<origin xyz=\"  0.1\t0.2\n\n 0.3 \" rpy=\"\n0.4&#9;0.5&#10;0.6\"/>\
-             <axis xyz=\"\t0 1e0   +0.0 \"/>"
-        )
-    ));
+    let plain = two_links("<origin xyz=\"0.1 0.2 0.3\" rpy=\"0.4 0.5 0.6\"/><axis xyz=\"0 1 0\"/>");
+    let spaced = two_links(
+        "<origin xyz=\"  0.1\t0.2\n\n 0.3 \" rpy=\"\n0.4&#9;0.5&#10;0.6\"/>\
+         <axis xyz=\"\t0 1e0   +0.0 \"/>",
+    );
     assert_eq!(chain(&plain, "a", "b"), chain(&spaced, "a", "b"));
 }
 
 #[test]
 fn missing_origin_axis_and_limit_take_the_defaults() {
-    let text = robot(&format!(
-        "{}{}{}{}",
-        links(&["a", "b", "c", "d"]),
-        joint("j1", "revolute", "a", "b", ""),
-        joint(
-            "j2",
-            "continuous",
-            "b",
-            "c",
-            "<origin xyz=\"1 0 0\"/><axis/><limit effort=\"1\"/>"
-        ),
-        joint(
-            "j3",
-            "prismatic",
-            "c",
-            "d",
-            "<origin rpy=\"0 0 0\"/><limit lower=\"-0.5\"/>"
-        ),
-    ));
+    let j2 = "<origin xyz=\"1 0 0\"/><axis/><limit effort=\"1\"/>";
+    let j3 = "<origin rpy=\"0 0 0\"/><limit lower=\"-0.5\"/>";
+    let text = robot_of(
+        &["a", "b", "c", "d"],
+        &[
+            bare("j1", "revolute", "a", "b"),
+            joint("j2", "continuous", "b", "c", j2),
+            joint("j3", "prismatic", "c", "d", j3),
+        ],
+    );
     let c = chain(&text, "a", "d");
     let inf = f64::INFINITY;
     // Axis (1, 0, 0) everywhere.
@@ -253,19 +231,15 @@ fn missing_origin_axis_and_limit_take_the_defaults() {
 
 #[test]
 fn axes_are_normalised_and_continuous_limits_are_kept() {
-    let text = robot(&format!(
-        "{}{}{}",
-        links(&["a", "b", "c"]),
-        joint(
-            "j1",
-            "continuous",
-            "a",
-            "b",
-            "<origin xyz=\"0 0 1\"/><axis xyz=\"0 -3 4\"/>\
-             <limit lower=\" -6.5 \" upper=\"inf\"/>"
-        ),
-        joint("j2", "prismatic", "b", "c", "<axis xyz=\"0 0 2\"/>"),
-    ));
+    let j1 = "<origin xyz=\"0 0 1\"/><axis xyz=\"0 -3 4\"/>\
+              <limit lower=\" -6.5 \" upper=\"inf\"/>";
+    let text = robot_of(
+        &["a", "b", "c"],
+        &[
+            joint("j1", "continuous", "a", "b", j1),
+            joint("j2", "prismatic", "b", "c", "<axis xyz=\"0 0 2\"/>"),
+        ],
+    );
     let c = chain(&text, "a", "c");
     let s = c.joints[0].screw;
     assert_eq!(&s[..3], &[0.0, -0.6, 0.8]);
@@ -317,29 +291,26 @@ fn namespaces_comments_and_unknown_elements_are_ignored() {
 
 #[test]
 fn fixed_joints_are_folded_in_and_off_path_problems_do_not_matter() {
-    let text = robot(&format!(
-        "{}{}{}{}{}{}{}",
-        links(&["w", "a", "b", "c", "tip", "side", "side2"]),
-        joint(
-            "mount",
-            "fixed",
-            "w",
-            "a",
-            "<origin xyz=\"0 0 1\" rpy=\"0 0 1.5707963267948966\"/><axis xyz=\"0 0 0\"/>"
-        ),
-        joint("j1", "revolute", "a", "b", "<axis xyz=\"1 0 0\"/>"),
-        joint("between", "fixed", "b", "c", "<origin xyz=\"2 0 0\"/>"),
-        joint("j2", "prismatic", "c", "tip", "<axis xyz=\"1 0 0\"/>"),
-        // Off the path: a planar joint and a mimic joint with a zero axis.
-        joint("plane", "planar", "w", "side", ""),
-        joint(
-            "follower",
-            "revolute",
-            "side",
-            "side2",
-            "<axis xyz=\"0 0 0\"/><mimic joint=\"j1\"/>"
-        ),
-    ));
+    let mount = "<origin xyz=\"0 0 1\" rpy=\"0 0 1.5707963267948966\"/><axis xyz=\"0 0 0\"/>";
+    let x = "<axis xyz=\"1 0 0\"/>";
+    let text = robot_of(
+        &["w", "a", "b", "c", "tip", "side", "side2"],
+        &[
+            joint("mount", "fixed", "w", "a", mount),
+            joint("j1", "revolute", "a", "b", x),
+            joint("between", "fixed", "b", "c", "<origin xyz=\"2 0 0\"/>"),
+            joint("j2", "prismatic", "c", "tip", x),
+            // Off the path: a planar joint and a mimic joint with a zero axis.
+            bare("plane", "planar", "w", "side"),
+            joint(
+                "follower",
+                "revolute",
+                "side",
+                "side2",
+                "<axis xyz=\"0 0 0\"/><mimic joint=\"j1\"/>",
+            ),
+        ],
+    );
     let u = Urdf::parse(&text).unwrap();
     let fixed = u.joint("mount").unwrap();
     assert_eq!((fixed.lower, fixed.upper), (0.0, 0.0));
@@ -358,32 +329,19 @@ fn fixed_joints_are_folded_in_and_off_path_problems_do_not_matter() {
 
 #[test]
 fn an_explicit_list_may_freeze_moving_joints() {
-    let text = robot(&format!(
-        "{}{}{}{}",
-        links(&["a", "b", "c", "d"]),
-        joint(
-            "j1",
-            "revolute",
-            "a",
-            "b",
-            "<origin xyz=\"1 0 0\"/><axis xyz=\"0 0 1\"/>"
-        ),
-        // Frozen at 0: even a zero axis does not matter.
-        joint(
-            "j2",
-            "revolute",
-            "b",
-            "c",
-            "<origin xyz=\"1 0 0\"/><axis xyz=\"0 0 0\"/>"
-        ),
-        joint(
-            "j3",
-            "revolute",
-            "c",
-            "d",
-            "<origin xyz=\"1 0 0\"/><axis xyz=\"0 0 1\"/>"
-        ),
-    ));
+    let hinge = |name, parent, child, axis| {
+        let inner = format!("<origin xyz=\"1 0 0\"/><axis xyz=\"{axis}\"/>");
+        joint(name, "revolute", parent, child, &inner)
+    };
+    let text = robot_of(
+        &["a", "b", "c", "d"],
+        &[
+            hinge("j1", "a", "b", "0 0 1"),
+            // Frozen at 0: even a zero axis does not matter.
+            hinge("j2", "b", "c", "0 0 0"),
+            hinge("j3", "c", "d", "0 0 1"),
+        ],
+    );
     let all = error(&text, "a", "d", None);
     assert_eq!(all.kind(), ErrorKind::ZeroAxis);
     let c = chain_with(&text, "a", "d", &["j1", "j3"]);
@@ -394,17 +352,7 @@ fn an_explicit_list_may_freeze_moving_joints() {
 
 #[test]
 fn unbounded_limits_may_be_written_out() {
-    let text = robot(&format!(
-        "{}{}",
-        links(&["a", "b"]),
-        joint(
-            "j",
-            "revolute",
-            "a",
-            "b",
-            "<limit lower=\"-inf\" upper=\"Infinity\"/>"
-        ),
-    ));
+    let text = two_links("<limit lower=\"-inf\" upper=\"Infinity\"/>");
     let c = chain(&text, "a", "b");
     assert_eq!(
         (c.joints[0].lower, c.joints[0].upper),
@@ -415,393 +363,243 @@ fn unbounded_limits_may_be_written_out() {
 // ---------------------------------------------------------------------------------------
 // Every error kind.
 
+/// A robot of links `a` and `b` and one joint `j` of type `ty` from `a` to `b`.
+fn one_joint(ty: &str, inner: &str) -> String {
+    robot_of(&["a", "b"], &[joint("j", ty, "a", "b", inner)])
+}
+
 fn two_links(inner: &str) -> String {
-    robot(&format!(
-        "{}{}",
-        links(&["a", "b"]),
-        joint("j", "revolute", "a", "b", inner)
-    ))
+    one_joint("revolute", inner)
+}
+
+/// A joint without origin, axis or limit.
+fn bare(name: &str, ty: &str, parent: &str, child: &str) -> String {
+    joint(name, ty, parent, child, "")
+}
+
+/// Links `a`, `b`, `c` and fixed joints `j1` and `j2` from parent to child.
+fn fixed_pair(j1: [&str; 2], j2: [&str; 2]) -> String {
+    let joints = [
+        bare("j1", "fixed", j1[0], j1[1]),
+        bare("j2", "fixed", j2[0], j2[1]),
+    ];
+    robot_of(&["a", "b", "c"], &joints)
+}
+
+/// `text` with a link `c` and the joint `extra` added at the end.
+fn with_c(text: &str, extra: String) -> String {
+    text.replace("</robot>", &format!("{}{}</robot>", links(&["c"]), extra))
+}
+
+/// A request that must fail: the error kind and what its message must mention.
+struct Case {
+    kind: ErrorKind,
+    text: String,
+    base: &'static str,
+    tip: &'static str,
+    joints: Option<&'static [&'static str]>,
+    mentions: &'static [&'static str],
+}
+
+/// A request from `a` to `b`, all moving joints.
+fn case(kind: ErrorKind, text: impl Into<String>, mentions: &'static [&'static str]) -> Case {
+    Case {
+        kind,
+        text: text.into(),
+        base: "a",
+        tip: "b",
+        joints: None,
+        mentions,
+    }
+}
+
+impl Case {
+    fn path(self, base: &'static str, tip: &'static str) -> Self {
+        Case { base, tip, ..self }
+    }
+
+    fn joints(self, joints: &'static [&'static str]) -> Self {
+        let joints = Some(joints);
+        Case { joints, ..self }
+    }
 }
 
 #[test]
 fn every_error_kind() {
+    use ErrorKind as K;
     let ok = two_links("");
-    type Case = (
-        ErrorKind,
-        String,
-        &'static str,
-        &'static str,
-        Option<&'static [&'static str]>,
-        &'static [&'static str],
-    );
-    let cases: Vec<Case> = vec![
-        (
-            ErrorKind::Xml,
-            "<robot name=\"r\"><link name=\"a\"></robot>".into(),
-            "a",
-            "b",
-            None,
+    let orphan = "<joint name=\"j\" type=\"fixed\"><child link=\"b\"/></joint>".to_string();
+    let far = "<origin xyz=\"1e308 0 0\"/>";
+    let cases = [
+        case(
+            K::Xml,
+            "<robot name=\"r\"><link name=\"a\"></robot>",
             &["1:"],
         ),
-        (ErrorKind::Xml, String::new(), "a", "b", None, &["1:1"]),
-        (
-            ErrorKind::NotARobot,
-            "<model name=\"x\"/>".into(),
-            "a",
-            "b",
-            None,
-            &["model", "robot"],
-        ),
-        (
-            ErrorKind::MissingAttribute,
-            "<robot/>".into(),
-            "a",
-            "b",
-            None,
-            &["robot", "name"],
-        ),
-        (
-            ErrorKind::MissingAttribute,
-            robot("<link/>"),
-            "a",
-            "b",
-            None,
-            &["link", "name"],
-        ),
-        (
-            ErrorKind::MissingAttribute,
+        case(K::Xml, "", &["1:1"]),
+        case(K::NotARobot, "<model name=\"x\"/>", &["model", "robot"]),
+        case(K::MissingAttribute, "<robot/>", &["robot", "name"]),
+        case(K::MissingAttribute, robot("<link/>"), &["link", "name"]),
+        case(
+            K::MissingAttribute,
             robot("<link name=\"\"/>"),
-            "a",
-            "b",
-            None,
             &["name", "empty"],
         ),
-        (
-            ErrorKind::MissingAttribute,
-            robot(&format!(
-                "{}<joint name=\"j\" type=\"fixed\"><child link=\"b\"/></joint>",
-                links(&["a", "b"])
-            )),
-            "a",
-            "b",
-            None,
+        case(
+            K::MissingAttribute,
+            robot_of(&["a", "b"], &[orphan]),
             &["'j'", "parent"],
         ),
-        (
-            ErrorKind::InvalidNumber,
+        case(
+            K::InvalidNumber,
             two_links("<origin xyz=\"0 0 x\"/>"),
-            "a",
-            "b",
-            None,
             &["'j'", "origin", "xyz", "\"x\""],
         ),
-        (
-            ErrorKind::InvalidNumber,
+        case(
+            K::InvalidNumber,
             two_links("<origin rpy=\"0 0\"/>"),
-            "a",
-            "b",
-            None,
             &["rpy", "expected 3 numbers, found 2"],
         ),
-        (
-            ErrorKind::InvalidNumber,
+        case(
+            K::InvalidNumber,
             two_links("<axis xyz=\"1,0,0\"/>"),
-            "a",
-            "b",
-            None,
             &["axis", "xyz"],
         ),
-        (
-            ErrorKind::InvalidNumber,
+        case(
+            K::InvalidNumber,
             two_links("<limit upper=\"1.5rad\"/>"),
-            "a",
-            "b",
-            None,
             &["limit", "upper"],
         ),
-        (
-            ErrorKind::NonFinite,
+        case(
+            K::NonFinite,
             two_links("<origin xyz=\"0 NaN 0\"/>"),
-            "a",
-            "b",
-            None,
             &["origin", "xyz", "NaN"],
         ),
-        (
-            ErrorKind::NonFinite,
+        case(
+            K::NonFinite,
             two_links("<axis xyz=\"0 0 1e400\"/>"),
-            "a",
-            "b",
-            None,
             &["axis", "inf"],
         ),
-        (
-            ErrorKind::NonFinite,
+        case(
+            K::NonFinite,
             two_links("<limit lower=\"nan\"/>"),
-            "a",
-            "b",
-            None,
             &["limit", "lower"],
         ),
-        (
-            ErrorKind::NonFinite,
-            two_links("<origin xyz=\"1e308 0 0\"/>").replace(
-                "</robot>",
-                &format!(
-                    "{}{}</robot>",
-                    links(&["c"]),
-                    joint("k", "fixed", "b", "c", "<origin xyz=\"1e308 0 0\"/>")
-                ),
-            ),
-            "a",
-            "c",
-            None,
+        case(
+            K::NonFinite,
+            with_c(&two_links(far), joint("k", "fixed", "b", "c", far)),
             &["home", "not finite"],
-        ),
-        (
-            ErrorKind::UnknownLink,
-            robot(&format!(
-                "{}{}",
-                links(&["a"]),
-                joint("j", "fixed", "a", "nowhere", "")
-            )),
-            "a",
-            "b",
-            None,
+        )
+        .path("a", "c"),
+        case(
+            K::UnknownLink,
+            robot_of(&["a"], &[bare("j", "fixed", "a", "nowhere")]),
             &["nowhere", "'j'"],
         ),
-        (
-            ErrorKind::UnknownLink,
-            ok.clone(),
-            "a",
-            "zz",
-            None,
-            &["zz", "tip"],
-        ),
-        (
-            ErrorKind::UnknownJoint,
-            ok.clone(),
-            "a",
-            "b",
-            Some(&["nope"]),
-            &["nope"],
-        ),
-        (
-            ErrorKind::DuplicateName,
-            robot(&links(&["a", "a"])),
-            "a",
-            "b",
-            None,
+        case(K::UnknownLink, ok.clone(), &["zz", "tip"]).path("a", "zz"),
+        case(K::UnknownJoint, ok.clone(), &["nope"]).joints(&["nope"]),
+        case(
+            K::DuplicateName,
+            robot_of(&["a", "a"], &[]),
             &["link 'a'", "twice"],
         ),
-        (
-            ErrorKind::DuplicateName,
-            ok.replace(
-                "</robot>",
-                &format!(
-                    "{}{}</robot>",
-                    links(&["c"]),
-                    joint("j", "fixed", "b", "c", "")
-                ),
-            ),
-            "a",
-            "c",
-            None,
+        case(
+            K::DuplicateName,
+            with_c(&ok, bare("j", "fixed", "b", "c")),
             &["joint 'j'", "twice"],
-        ),
-        (
-            ErrorKind::DuplicateName,
-            ok.clone(),
-            "a",
-            "b",
-            Some(&["j", "j"]),
-            &["'j'", "twice"],
-        ),
-        (
-            ErrorKind::MultipleParents,
-            robot(&format!(
-                "{}{}{}",
-                links(&["a", "b", "c"]),
-                joint("j1", "fixed", "a", "c", ""),
-                joint("j2", "fixed", "b", "c", "")
-            )),
-            "a",
-            "c",
-            None,
+        )
+        .path("a", "c"),
+        case(K::DuplicateName, ok.clone(), &["'j'", "twice"]).joints(&["j", "j"]),
+        case(
+            K::MultipleParents,
+            fixed_pair(["a", "c"], ["b", "c"]),
             &["'c'", "j1", "j2"],
-        ),
-        (
-            ErrorKind::Cycle,
-            robot(&format!(
-                "{}{}{}",
-                links(&["a", "b", "c"]),
-                joint("j1", "fixed", "b", "c", ""),
-                joint("j2", "fixed", "c", "b", "")
-            )),
-            "a",
-            "c",
-            None,
+        )
+        .path("a", "c"),
+        case(
+            K::Cycle,
+            fixed_pair(["b", "c"], ["c", "b"]),
             &["b", "c", "cycle"],
-        ),
-        (
-            ErrorKind::Cycle,
-            robot(&format!(
-                "{}{}",
-                links(&["a"]),
-                joint("j", "fixed", "a", "a", "")
-            )),
-            "a",
-            "a",
-            None,
+        )
+        .path("a", "c"),
+        case(
+            K::Cycle,
+            robot_of(&["a"], &[bare("j", "fixed", "a", "a")]),
             &["'a'", "own parent"],
-        ),
-        (
-            ErrorKind::TipNotBelowBase,
-            ok.clone(),
-            "b",
-            "a",
-            None,
-            &["'a'", "'b'"],
-        ),
-        (
-            ErrorKind::TipNotBelowBase,
-            ok.clone(),
-            "a",
-            "a",
-            None,
-            &["'a'", "base"],
-        ),
-        (
-            ErrorKind::NotMovable,
-            robot(&format!(
-                "{}{}",
-                links(&["a", "b"]),
-                joint("j", "fixed", "a", "b", "")
-            )),
-            "a",
-            "b",
-            Some(&["j"]),
-            &["'j'", "fixed"],
-        ),
-        (
-            ErrorKind::NotMovable,
-            robot(&format!(
-                "{}{}",
-                links(&["a", "b"]),
-                joint("j", "fixed", "a", "b", "")
-            )),
-            "a",
-            "b",
-            None,
-            &["no moving joint"],
-        ),
-        (
-            ErrorKind::UnsupportedJointType,
-            robot(&format!(
-                "{}{}",
-                links(&["a", "b"]),
-                joint("j", "floating", "a", "b", "")
-            )),
-            "a",
-            "b",
-            None,
+        )
+        .path("a", "a"),
+        case(K::TipNotBelowBase, ok.clone(), &["'a'", "'b'"]).path("b", "a"),
+        case(K::TipNotBelowBase, ok.clone(), &["'a'", "base"]).path("a", "a"),
+        case(K::NotMovable, one_joint("fixed", ""), &["'j'", "fixed"]).joints(&["j"]),
+        case(K::NotMovable, one_joint("fixed", ""), &["no moving joint"]),
+        case(
+            K::UnsupportedJointType,
+            one_joint("floating", ""),
             &["'j'", "floating"],
         ),
-        (
-            ErrorKind::UnsupportedJointType,
-            robot(&format!(
-                "{}{}",
-                links(&["a", "b"]),
-                joint("j", "ball", "a", "b", "")
-            )),
-            "a",
-            "b",
-            None,
+        case(
+            K::UnsupportedJointType,
+            one_joint("ball", ""),
             &["'j'", "ball"],
         ),
-        (
-            ErrorKind::ZeroAxis,
+        case(
+            K::ZeroAxis,
             two_links("<axis xyz=\"0 0 0\"/>"),
-            "a",
-            "b",
-            None,
             &["'j'", "axis"],
         ),
-        (
-            ErrorKind::InvalidLimits,
+        case(
+            K::InvalidLimits,
             two_links("<limit lower=\"1\" upper=\"-1\"/>"),
-            "a",
-            "b",
-            None,
             &["'j'", "lower=\"1\"", "upper=\"-1\""],
         ),
-        (
-            ErrorKind::Mimic,
+        case(
+            K::Mimic,
             two_links("<mimic joint=\"other\" multiplier=\"2\"/>"),
-            "a",
-            "b",
-            None,
             &["'j'", "mimic"],
         ),
-        (
-            ErrorKind::NotOnPath,
-            ok.replace(
-                "</robot>",
-                &format!(
-                    "{}{}</robot>",
-                    links(&["c"]),
-                    joint("k", "revolute", "a", "c", "")
-                ),
-            ),
-            "a",
-            "b",
-            Some(&["k"]),
+        case(
+            K::NotOnPath,
+            with_c(&ok, bare("k", "revolute", "a", "c")),
             &["'k'", "path"],
-        ),
-        (
-            ErrorKind::NotOnPath,
-            ok.replace(
-                "</robot>",
-                &format!(
-                    "{}{}</robot>",
-                    links(&["c"]),
-                    joint("k", "revolute", "b", "c", "")
-                ),
-            ),
-            "a",
-            "c",
-            Some(&["k", "j"]),
+        )
+        .joints(&["k"]),
+        case(
+            K::NotOnPath,
+            with_c(&ok, bare("k", "revolute", "b", "c")),
             &["'j'", "'k'", "order"],
-        ),
+        )
+        .path("a", "c")
+        .joints(&["k", "j"]),
     ];
     let mut seen = std::collections::HashSet::new();
-    for (kind, text, base, tip, joints, mentions) in &cases {
-        let e = error(text, base, tip, *joints);
+    for c in &cases {
+        let e = error(&c.text, c.base, c.tip, c.joints);
         let shown = e.to_string();
-        assert_eq!(e.kind(), *kind, "{shown}\n{text}");
-        for m in *mentions {
+        let (kind, text) = (c.kind, &c.text);
+        assert_eq!(e.kind(), kind, "{shown}\n{text}");
+        for m in c.mentions {
             assert!(shown.contains(m), "{kind:?}: {shown:?} lacks {m:?}");
         }
         seen.insert(e.kind());
     }
     for kind in [
-        ErrorKind::Xml,
-        ErrorKind::NotARobot,
-        ErrorKind::MissingAttribute,
-        ErrorKind::InvalidNumber,
-        ErrorKind::NonFinite,
-        ErrorKind::UnknownLink,
-        ErrorKind::UnknownJoint,
-        ErrorKind::DuplicateName,
-        ErrorKind::MultipleParents,
-        ErrorKind::Cycle,
-        ErrorKind::TipNotBelowBase,
-        ErrorKind::NotMovable,
-        ErrorKind::UnsupportedJointType,
-        ErrorKind::ZeroAxis,
-        ErrorKind::InvalidLimits,
-        ErrorKind::Mimic,
-        ErrorKind::NotOnPath,
+        K::Xml,
+        K::NotARobot,
+        K::MissingAttribute,
+        K::InvalidNumber,
+        K::NonFinite,
+        K::UnknownLink,
+        K::UnknownJoint,
+        K::DuplicateName,
+        K::MultipleParents,
+        K::Cycle,
+        K::TipNotBelowBase,
+        K::NotMovable,
+        K::UnsupportedJointType,
+        K::ZeroAxis,
+        K::InvalidLimits,
+        K::Mimic,
+        K::NotOnPath,
     ] {
         assert!(seen.contains(&kind), "{kind:?} not covered");
     }

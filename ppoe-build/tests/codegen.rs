@@ -3,14 +3,9 @@
 
 use ppoe_build::codegen::{self, Source};
 use ppoe_build::{ChainJoint, Config, ErrorKind, JointKind, RobotChain, Scalar};
-use std::path::{Path, PathBuf};
-use std::process::Command;
 
-fn urdf(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../test_data/urdf")
-        .join(name)
-}
+mod common;
+use common::{rustfmt_available, rustfmt_check, urdf_path};
 
 /// The requests of the golden files, plus a few more.
 const CHAINS: &[(&str, &str, &str)] = &[
@@ -24,36 +19,9 @@ const CHAINS: &[(&str, &str, &str)] = &[
     ("tree.urdf", "base_footprint", "right_tip"),
 ];
 
-fn rustfmt_available() -> bool {
-    Command::new("rustfmt")
-        .arg("--version")
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
-
 /// `None` if rustfmt accepts `source` unchanged, else its diff.
 fn rustfmt_diff(source: &str, tag: &str) -> Option<String> {
-    // Outside the workspace, so that no rustfmt.toml of ours applies: the output is meant
-    // for rustfmt's defaults.
-    let dir = std::env::temp_dir().join(format!("ppoe-build-fmt-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join(format!("{tag}.rs"));
-    std::fs::write(&file, source).unwrap();
-    let out = Command::new("rustfmt")
-        .args(["--check", "--edition", "2021"])
-        .arg(&file)
-        .output()
-        .expect("rustfmt runs");
-    let _ = std::fs::remove_file(&file);
-    if out.status.success() {
-        None
-    } else {
-        Some(format!(
-            "{}{}",
-            String::from_utf8_lossy(&out.stdout),
-            String::from_utf8_lossy(&out.stderr)
-        ))
-    }
+    rustfmt_check(source, "ppoe-build-fmt", tag)
 }
 
 #[test]
@@ -65,7 +33,7 @@ fn generated_tables_are_rustfmt_clean() {
     // The check is not vacuous: rustfmt does flag unformatted code.
     assert!(rustfmt_diff("pub const X: u8=1;\n", "unformatted").is_some());
     for (file, base, tip) in CHAINS {
-        let path = urdf(file);
+        let path = urdf_path(file);
         if !path.exists() {
             continue;
         }
@@ -207,7 +175,7 @@ fn synthetic_tables_are_rustfmt_clean() {
 
 #[test]
 fn output_is_deterministic_documented_and_portable() {
-    let path = urdf("seed.urdf");
+    let path = urdf_path("seed.urdf");
     let mut config = Config::new(&path);
     config.base("linkmount").tip("tcp").scalar(Scalar::Both);
     let a = config.generate().unwrap();
@@ -254,7 +222,7 @@ fn output_is_deterministic_documented_and_portable() {
 
 #[test]
 fn every_f64_value_is_written_in_round_trip_form() {
-    let chain = Config::new(urdf("rpy_everywhere.urdf"))
+    let chain = Config::new(urdf_path("rpy_everywhere.urdf"))
         .base("base")
         .tip("tool")
         .chain()
@@ -304,7 +272,7 @@ fn every_f64_value_is_written_in_round_trip_form() {
 
 #[test]
 fn bad_names_and_missing_links_are_config_errors() {
-    let path = urdf("seed.urdf");
+    let path = urdf_path("seed.urdf");
     let err = Config::new(&path)
         .base("linkmount")
         .tip("tcp")
@@ -314,7 +282,7 @@ fn bad_names_and_missing_links_are_config_errors() {
     assert_eq!(err.kind(), ErrorKind::Config);
     let err = Config::new(&path).base("linkmount").chain().unwrap_err();
     assert_eq!(err.kind(), ErrorKind::Config);
-    let err = Config::new(urdf("no_such_file.urdf"))
+    let err = Config::new(urdf_path("no_such_file.urdf"))
         .base("a")
         .tip("b")
         .chain()
@@ -333,7 +301,7 @@ fn bad_names_and_missing_links_are_config_errors() {
 fn write_to_out_dir_writes_the_generated_file() {
     let dir = std::env::temp_dir().join(format!("ppoe-build-out-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let mut config = Config::new(urdf("seed.urdf"));
+    let mut config = Config::new(urdf_path("seed.urdf"));
     config.base("linkmount").tip("tcp").scalar(Scalar::F32);
     let target = dir.join("seed_table.rs");
     config.write_to(&target).unwrap();

@@ -3,15 +3,10 @@
 //! huge but finite numbers, and limits that only matter on the chain.
 
 use ppoe_build::{Config, ErrorKind, JointKind, Scalar, Urdf};
-use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::{Duration, Instant};
 
-fn urdf_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../test_data/urdf")
-        .join(name)
-}
+mod common;
+use common::{rustfmt_available, rustfmt_check, urdf_path};
 
 /// Generous: these take milliseconds; the bound catches quadratic (or worse) behaviour.
 const TIME_LIMIT: Duration = Duration::from_secs(2);
@@ -28,31 +23,11 @@ const NON_ASCII_TIP: &str = "\"spitze\" \\ 🔧";
 /// `None` if rustfmt accepts `source` unchanged (which needs it to parse), else its output;
 /// `Some("")`-free: skipped (None) when rustfmt is not installed.
 fn rustfmt_complaint(source: &str, tag: &str) -> Option<String> {
-    let available = Command::new("rustfmt")
-        .arg("--version")
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !available {
+    if !rustfmt_available() {
         eprintln!("note: rustfmt not found, skipping the parse check");
         return None;
     }
-    let dir = std::env::temp_dir().join(format!("ppoe-build-hostile-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join(format!("{tag}.rs"));
-    std::fs::write(&file, source).unwrap();
-    let out = Command::new("rustfmt")
-        .args(["--check", "--edition", "2021"])
-        .arg(&file)
-        .output()
-        .expect("rustfmt runs");
-    let _ = std::fs::remove_file(&file);
-    (!out.status.success()).then(|| {
-        format!(
-            "{}{}",
-            String::from_utf8_lossy(&out.stdout),
-            String::from_utf8_lossy(&out.stderr)
-        )
-    })
+    rustfmt_check(source, "ppoe-build-hostile", tag)
 }
 
 #[test]

@@ -33,7 +33,12 @@ fn run(args: &[&str], stdin: Option<&str>) -> Output {
     {
         let mut i = child.stdin.take().unwrap();
         if let Some(s) = stdin {
-            i.write_all(s.as_bytes()).unwrap();
+            // A command that fails before reading its input (e.g. a missing URDF) may
+            // exit first: a broken pipe here is not an error of the test.
+            match i.write_all(s.as_bytes()) {
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+                r => r.unwrap(),
+            }
         }
     }
     child.wait_with_output().unwrap()
@@ -49,6 +54,40 @@ fn assert_one_line_error(out: &Output) -> String {
     assert!(lines[0].starts_with("error: "), "{stderr:?}");
     assert!(!stderr.contains("panicked"), "{stderr:?}");
     lines[0].to_string()
+}
+
+/// Asserts success, with standard error (after `context`) as the failure message.
+fn assert_success(out: &Output, context: &str) {
+    assert!(
+        out.status.success(),
+        "{context}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// Runs `ppoe <cmd> --urdf seed.urdf --base linkmount --tip tcp <extra>`.
+fn run_seed(cmd: &str, extra: &[&str], stdin: Option<&str>) -> Output {
+    let urdf = seed_urdf();
+    let mut args = vec![
+        cmd,
+        "--urdf",
+        urdf.to_str().unwrap(),
+        "--base",
+        "linkmount",
+        "--tip",
+        "tcp",
+    ];
+    args.extend_from_slice(extra);
+    run(&args, stdin)
+}
+
+/// Asserts a one-line error (see [`assert_one_line_error`]) that contains every one of
+/// `mentions`.
+fn assert_error_mentions(out: &Output, mentions: &[&str]) {
+    let line = assert_one_line_error(out);
+    for m in mentions {
+        assert!(line.contains(m), "{line}");
+    }
 }
 
 fn golden() -> Value {
@@ -105,24 +144,14 @@ fn seed_input(case: &Value) -> String {
 }
 
 fn eval_seed(extra: &[&str], input: &str) -> Value {
-    let urdf = seed_urdf();
-    let mut args = vec![
-        "eval",
-        "--urdf",
-        urdf.to_str().unwrap(),
-        "--base",
-        "linkmount",
-        "--tip",
-        "tcp",
-    ];
-    args.extend_from_slice(extra);
-    let out = run(&args, Some(input));
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = run_seed("eval", extra, Some(input));
+    assert_success(&out, "");
     serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// `rel_err` of two JSON matrices is at most `tol`.
+fn close(a: &Value, b: &Value, tol: f64) -> bool {
+    rel_err(&matrix(a), &matrix(b)) <= tol
 }
 
 #[test]
@@ -130,8 +159,8 @@ fn eval_seed_initial_matches_golden_right() {
     let case = golden_case("seed_initial");
     let out = eval_seed(&["--convention", "ppoe"], &seed_input(&case));
     let r = &out["results"][0];
-    assert!(rel_err(&matrix(&r["pose"]), &matrix(&case["pose"])) <= 1e-12);
-    assert!(rel_err(&matrix(&r["cov"]), &matrix(&case["cov_right"])) <= 1e-12);
+    assert!(close(&r["pose"], &case["pose"], 1e-12));
+    assert!(close(&r["cov"], &case["cov_right"], 1e-12));
     // The default convention is the right perturbation.
     let out2 = eval_seed(&[], &seed_input(&case));
     assert_eq!(out, out2);
@@ -152,8 +181,8 @@ fn eval_seed_initial_matches_golden_pytransform3d() {
         "",
     );
     let r = &out["results"][0];
-    assert!(rel_err(&matrix(&r["pose"]), &matrix(&case["pose"])) <= 1e-12);
-    assert!(rel_err(&matrix(&r["cov"]), &matrix(&case["cov_pytransform3d"])) <= 1e-12);
+    assert!(close(&r["pose"], &case["pose"], 1e-12));
+    assert!(close(&r["cov"], &case["cov_pytransform3d"], 1e-12));
     assert_eq!(r["thetas_clipped"], case["thetas_clipped"]);
 }
 
@@ -162,7 +191,7 @@ fn eval_left_convention_matches_golden() {
     let case = golden_case("seed_initial");
     let out = eval_seed(&["--convention", "left"], &seed_input(&case));
     let r = &out["results"][0];
-    assert!(rel_err(&matrix(&r["cov"]), &matrix(&case["cov_left"])) <= 1e-12);
+    assert!(close(&r["cov"], &case["cov_left"], 1e-12));
 }
 
 #[test]
@@ -174,8 +203,8 @@ fn eval_chain_matches_golden() {
     assert_eq!(c["base"], "linkmount");
     assert_eq!(c["tip"], "tcp");
     assert_eq!(c["joints"], g["joints"]);
-    assert!(rel_err(&matrix(&c["screw_axes"]), &matrix(&g["screw_axes"])) <= 1e-12);
-    assert!(rel_err(&matrix(&c["home"]), &matrix(&g["home"])) <= 1e-12);
+    assert!(close(&c["screw_axes"], &g["screw_axes"], 1e-12));
+    assert!(close(&c["home"], &g["home"], 1e-12));
     // Infinite limits are null.
     assert_eq!(
         c["limits"],
@@ -205,18 +234,11 @@ fn eval_many_golden_cases_and_clipping() {
         let results = out["results"].as_array().unwrap();
         assert_eq!(results.len(), cases.len());
         for (r, c) in results.iter().zip(&cases) {
-            assert!(
-                rel_err(&matrix(&r["pose"]), &matrix(&c["pose"])) <= 1e-12,
-                "{}",
-                c["label"]
-            );
-            assert!(
-                rel_err(&matrix(&r["cov"]), &matrix(&c[key])) <= 1e-12,
-                "{} {conv}",
-                c["label"]
-            );
+            let label = &c["label"];
+            assert!(close(&r["pose"], &c["pose"], 1e-12), "{label}");
+            assert!(close(&r["cov"], &c[key], 1e-12), "{label} {conv}");
             if conv == "pytransform3d" {
-                assert_eq!(r["thetas_clipped"], c["thetas_clipped"], "{}", c["label"]);
+                assert_eq!(r["thetas_clipped"], c["thetas_clipped"], "{label}");
             }
         }
     }
@@ -227,64 +249,35 @@ fn eval_f32_is_close() {
     let case = golden_case("seed_initial");
     let out = eval_seed(&["--scalar", "f32"], &seed_input(&case));
     let r = &out["results"][0];
-    assert!(rel_err(&matrix(&r["pose"]), &matrix(&case["pose"])) <= 1e-5);
-    assert!(rel_err(&matrix(&r["cov"]), &matrix(&case["cov_right"])) <= 1e-4);
+    assert!(close(&r["pose"], &case["pose"], 1e-5));
+    assert!(close(&r["cov"], &case["cov_right"], 1e-4));
 }
 
 #[test]
 fn table_prints_const_and_sha256() {
     use sha2::Digest;
-    let urdf = seed_urdf();
-    let sha = sha2::Sha256::digest(std::fs::read(&urdf).unwrap());
+    let sha = sha2::Sha256::digest(std::fs::read(seed_urdf()).unwrap());
     let sha: String = sha.iter().map(|b| format!("{b:02x}")).collect();
-    let out = run(
-        &[
-            "table",
-            "--urdf",
-            urdf.to_str().unwrap(),
-            "--base",
-            "linkmount",
-            "--tip",
-            "tcp",
-            "--scalar",
-            "both",
-            "--name",
-            "ARM",
-        ],
-        None,
-    );
-    assert!(out.status.success());
-    let src = String::from_utf8(out.stdout).unwrap();
-    assert!(
-        src.contains("pub const ARM: ppoe::chain::Chain<f64, 6>"),
-        "{src}"
-    );
-    assert!(
-        src.contains("pub const ARM_F32: ppoe::chain::Chain<f32, 6>"),
-        "{src}"
-    );
-    assert!(src.contains(&sha), "{src}");
+    let src = seed_table(&["--scalar", "both", "--name", "ARM"]);
+    for expected in [
+        "pub const ARM: ppoe::chain::Chain<f64, 6>",
+        "pub const ARM_F32: ppoe::chain::Chain<f32, 6>",
+        &sha,
+    ] {
+        assert!(src.contains(expected), "{src}");
+    }
+}
+
+/// The source `ppoe table` prints for the seed robot with the `extra` arguments.
+fn seed_table(extra: &[&str]) -> String {
+    let out = run_seed("table", extra, None);
+    assert_success(&out, "");
+    String::from_utf8(out.stdout).unwrap()
 }
 
 #[test]
 fn table_with_explicit_joints() {
-    let urdf = seed_urdf();
-    let out = run(
-        &[
-            "table",
-            "--urdf",
-            urdf.to_str().unwrap(),
-            "--base",
-            "linkmount",
-            "--tip",
-            "tcp",
-            "--joints",
-            "joint1,joint2,joint3",
-        ],
-        None,
-    );
-    assert!(out.status.success());
-    let src = String::from_utf8(out.stdout).unwrap();
+    let src = seed_table(&["--joints", "joint1,joint2,joint3"]);
     assert!(
         src.contains("pub const SEED: ppoe::chain::Chain<f64, 3>"),
         "{src}"
@@ -293,55 +286,28 @@ fn table_with_explicit_joints() {
 
 #[test]
 fn error_missing_urdf() {
-    let line = assert_one_line_error(&run(
-        &[
-            "eval",
-            "--urdf",
-            "no/such.urdf",
-            "--base",
-            "a",
-            "--tip",
-            "b",
-        ],
-        Some("{}"),
-    ));
-    assert!(line.contains("no/such.urdf"), "{line}");
+    let args = [
+        "eval",
+        "--urdf",
+        "no/such.urdf",
+        "--base",
+        "a",
+        "--tip",
+        "b",
+    ];
+    assert_error_mentions(&run(&args, Some("{}")), &["no/such.urdf"]);
 }
 
 #[test]
 fn error_missing_input_file() {
-    let urdf = seed_urdf();
-    let line = assert_one_line_error(&run(
-        &[
-            "eval",
-            "--urdf",
-            urdf.to_str().unwrap(),
-            "--base",
-            "linkmount",
-            "--tip",
-            "tcp",
-            "--input",
-            "no/such/cases.json",
-        ],
-        None,
-    ));
-    assert!(line.contains("cases.json"), "{line}");
+    let out = run_seed("eval", &["--input", "no/such/cases.json"], None);
+    assert_error_mentions(&out, &["cases.json"]);
 }
 
-fn eval_seed_err(input: &str) -> String {
-    let urdf = seed_urdf();
-    assert_one_line_error(&run(
-        &[
-            "eval",
-            "--urdf",
-            urdf.to_str().unwrap(),
-            "--base",
-            "linkmount",
-            "--tip",
-            "tcp",
-        ],
-        Some(input),
-    ))
+/// Asserts that `ppoe eval` of the seed robot fails on `input` with one line mentioning
+/// each of `mentions`.
+fn eval_seed_err(input: &str, mentions: &[&str]) {
+    assert_error_mentions(&run_seed("eval", &[], Some(input)), mentions)
 }
 
 #[test]
@@ -353,27 +319,22 @@ fn error_malformed_json() {
         "{\"cases\": [{\"thetas\": [1, 2, 3, 4, 5, 6]}]}",
         "{\"cases\": [{\"thetas\": \"x\", \"covs\": []}]}",
     ] {
-        let line = eval_seed_err(bad);
+        let line = assert_one_line_error(&run_seed("eval", &[], Some(bad)));
         assert!(line.contains("malformed input JSON"), "{bad}: {line}");
     }
     // A covariance that is not 6×6.
     let mut case = golden_case("seed_initial");
     case["covs"][1] = json!(vec![vec![0.0; 5]; 6]);
-    let line = eval_seed_err(&seed_input(&case));
-    assert!(line.contains("malformed input JSON"), "{line}");
+    eval_seed_err(&seed_input(&case), &["malformed input JSON"]);
 }
 
 #[test]
 fn error_wrong_joint_count() {
-    let line = eval_seed_err(r#"{"cases":[{"thetas":[0,0],"covs":[]}]}"#);
-    assert!(
-        line.contains("case 0") && line.contains("6 joints"),
-        "{line}"
-    );
+    let input = r#"{"cases":[{"thetas":[0,0],"covs":[]}]}"#;
+    eval_seed_err(input, &["case 0", "6 joints"]);
     let mut case = golden_case("seed_initial");
     case["covs"].as_array_mut().unwrap().pop();
-    let line = eval_seed_err(&seed_input(&case));
-    assert!(line.contains("5 covariances"), "{line}");
+    eval_seed_err(&seed_input(&case), &["5 covariances"]);
 }
 
 #[test]
@@ -388,19 +349,11 @@ fn error_not_psd_names_case_and_joint() {
         {"thetas": bad["thetas"], "covs": bad["covs"]},
     ]})
     .to_string();
-    let line = eval_seed_err(&input);
-    assert!(
-        line.contains("case 3, joint 2") && line.contains("not positive semi-definite"),
-        "{line}"
-    );
+    eval_seed_err(&input, &["case 3, joint 2", "not positive semi-definite"]);
     // Not symmetric.
     let mut asym = case.clone();
     asym["covs"][0][0][1] = json!(0.01);
-    let line = eval_seed_err(&seed_input(&asym));
-    assert!(
-        line.contains("case 0, joint 0") && line.contains("symmetric"),
-        "{line}"
-    );
+    eval_seed_err(&seed_input(&asym), &["case 0, joint 0", "symmetric"]);
 }
 
 #[test]
@@ -487,14 +440,10 @@ fn demo_runs() {
         None,
     );
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(stdout.contains("ppoe-seed.png"), "{stdout}");
-    assert!(stdout.contains("ppoe-seed.gif"), "{stdout}");
-    assert!(stdout.contains("initial pose"), "{stdout}");
+    assert_success(&out, "");
+    for expected in ["ppoe-seed.png", "ppoe-seed.gif", "initial pose"] {
+        assert!(stdout.contains(expected), "{stdout}");
+    }
     // The printed initial pose is the golden one (to the printed precision).
     let t = golden_case("seed_initial")["pose"][0][3].as_f64().unwrap();
     assert!(stdout.contains(&format!("{t:.10e}")[..10]), "{stdout}");
@@ -520,12 +469,7 @@ fn demo_other_surfaces_run() {
         let dir = tmp(&format!("demo-surface-{i}"));
         let mut args = vec!["demo", "--frames", "2", "--out", dir.to_str().unwrap()];
         args.extend(extra);
-        let out = run(&args, None);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_success(&run(&args, None), "");
     }
 }
 
@@ -534,7 +478,6 @@ fn render_and_mesh_run() {
     let case = golden_case("seed_initial");
     let input = tmp("render-input.json");
     std::fs::write(&input, seed_input(&case)).unwrap();
-    let urdf = seed_urdf();
     for (cmd, format) in [
         ("render", "png"),
         ("render", "svg"),
@@ -543,29 +486,16 @@ fn render_and_mesh_run() {
         ("mesh", "ply"),
     ] {
         let dir = tmp(&format!("{cmd}-{format}"));
-        let out = run(
-            &[
-                cmd,
-                "--urdf",
-                urdf.to_str().unwrap(),
-                "--base",
-                "linkmount",
-                "--tip",
-                "tcp",
-                "--input",
-                input.to_str().unwrap(),
-                "--format",
-                format,
-                "--out",
-                dir.to_str().unwrap(),
-            ],
-            None,
-        );
-        assert!(
-            out.status.success(),
-            "{cmd} {format}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        let extra = [
+            "--input",
+            input.to_str().unwrap(),
+            "--format",
+            format,
+            "--out",
+            dir.to_str().unwrap(),
+        ];
+        let out = run_seed(cmd, &extra, None);
+        assert_success(&out, &format!("{cmd} {format}: "));
         assert!(String::from_utf8_lossy(&out.stdout).contains(&format!(".{format}")));
     }
 }
@@ -574,20 +504,11 @@ fn render_and_mesh_run() {
 fn render_reports_bad_cases() {
     let mut case = golden_case("seed_initial");
     case["covs"][4][1][1] = json!(-1.0);
-    let urdf = seed_urdf();
-    let line = assert_one_line_error(&run(
-        &[
-            "render",
-            "--urdf",
-            urdf.to_str().unwrap(),
-            "--base",
-            "linkmount",
-            "--tip",
-            "tcp",
-            "--out",
-            tmp("render-bad").to_str().unwrap(),
-        ],
+    let dir = tmp("render-bad");
+    let out = run_seed(
+        "render",
+        &["--out", dir.to_str().unwrap()],
         Some(&seed_input(&case)),
-    ));
-    assert!(line.contains("case 0, joint 4"), "{line}");
+    );
+    assert_error_mentions(&out, &["case 0, joint 4"]);
 }

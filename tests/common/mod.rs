@@ -1,11 +1,25 @@
-//! Shared helpers of the integration tests: golden-file loading and Gaussian sampling.
+//! Shared helpers of the integration tests and of `examples/accuracy.rs` (which includes
+//! this file): golden-file loading, Gaussian sampling and the Monte Carlo models.
 #![allow(dead_code)]
 
-use ppoe::{Mat6, Matrix, Transform, Vec6, Vector};
+use ppoe::uncertainty::{self, Order};
+use ppoe::{se3, Mat6, Matrix, Transform, Vec6, Vector};
 use rand::Rng;
 use rand_distr::StandardNormal;
 use serde_json::Value;
 use std::path::PathBuf;
+
+/// The golden PPOE files (`test_data/golden/ppoe/{name}.json`), one per test chain.
+pub const PPOE_FILES: [&str; 8] = [
+    "seed_linkmount_tcp",
+    "prismatic_base_link_tool0",
+    "fixed_between_world_tool_tip",
+    "continuous_base_ee",
+    "rpy_everywhere_base_tool",
+    "rpy_everywhere_link2_tool",
+    "tree_base_footprint_left_tip",
+    "tree_base_footprint_right_tip",
+];
 
 /// Path of a file below `test_data/`.
 pub fn data_path(rel: &str) -> PathBuf {
@@ -94,23 +108,52 @@ pub fn frob_rel(a: &Mat6<f64>, b: &Mat6<f64>) -> f64 {
     (d / n).sqrt()
 }
 
-/// A sampler of N(0, Σ) for a PSD Σ (Cholesky of Σ + 1e-300·I, exact for PD Σ; rank-
-/// deficient Σ are handled by a tiny diagonal shift far below the sampling error).
+pub fn diag(d: [f64; 6]) -> Mat6<f64> {
+    Mat6::from_diagonal(&Vector(d))
+}
+
+/// A sampler of N(0, Σ) for a PSD Σ: Cholesky of Σ + (1e-14·max|Σ| + 1e-300)·I (exact for
+/// PD Σ; rank-deficient Σ get a diagonal shift far below the sampling error).
 pub struct Gaussian6 {
     l: Mat6<f64>,
+    box_muller: bool,
 }
 
 impl Gaussian6 {
+    /// Standard normals from `rand_distr::StandardNormal`.
     pub fn new(cov: &Mat6<f64>) -> Self {
+        Self::with_normals(cov, false)
+    }
+
+    /// Standard normals by Box–Muller with the `libm` crate's `log`/`sincos` (pure Rust, so
+    /// the sample stream does not depend on the platform's math library).
+    pub fn box_muller(cov: &Mat6<f64>) -> Self {
+        Self::with_normals(cov, true)
+    }
+
+    fn with_normals(cov: &Mat6<f64>, box_muller: bool) -> Self {
         let shift = cov.amax() * 1e-14 + 1e-300;
         let l = (*cov + Mat6::identity() * shift)
             .cholesky()
             .expect("PSD covariance");
-        Self { l }
+        Self { l, box_muller }
     }
 
     pub fn sample(&self, rng: &mut impl Rng) -> Vec6<f64> {
-        let z: Vec6<f64> = Vector(std::array::from_fn(|_| rng.sample(StandardNormal)));
+        let z: Vec6<f64> = if self.box_muller {
+            let mut z = [0.0; 6];
+            for pair in z.chunks_exact_mut(2) {
+                let u1 = 1.0 - rng.gen::<f64>(); // (0, 1]
+                let u2 = rng.gen::<f64>();
+                let r = (-2.0 * libm::log(u1)).sqrt();
+                let (s, c) = libm::sincos(2.0 * std::f64::consts::PI * u2);
+                pair[0] = r * c;
+                pair[1] = r * s;
+            }
+            Vector(z)
+        } else {
+            Vector(std::array::from_fn(|_| rng.sample(StandardNormal)))
+        };
         self.l * z
     }
 }
@@ -272,6 +315,41 @@ pub fn seed_frame(k: usize) -> Vec<f64> {
         .collect()
 }
 
+/// The joint part of the PPOE model `T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M` at fixed joint values:
+/// the displacements `Dᵢ` and samplers of ξᵢ ~ N(0, covsᵢ).
+pub struct ChainModel {
+    ds: Vec<Transform<f64>>,
+    gs: Vec<Gaussian6>,
+}
+
+impl ChainModel {
+    /// `sampler` is [`Gaussian6::new`] or [`Gaussian6::box_muller`].
+    pub fn new(
+        chain: &ppoe::chain::ChainRef<f64>,
+        thetas: &[f64],
+        covs: &[Mat6<f64>],
+        sampler: fn(&Mat6<f64>) -> Gaussian6,
+    ) -> Self {
+        let gs = covs.iter().map(sampler).collect();
+        let ds = chain
+            .joints
+            .iter()
+            .zip(thetas)
+            .map(|(j, t)| j.displacement(j.clip(*t, false)))
+            .collect();
+        Self { ds, gs }
+    }
+
+    /// One draw of `D₁Exp(ξ₁)…DₙExp(ξₙ)` (without the home pose `M`).
+    pub fn draw(&self, rng: &mut impl Rng) -> Transform<f64> {
+        let mut t = Transform::identity();
+        for (d, g) in self.ds.iter().zip(&self.gs) {
+            t = t * *d * se3::exp(&g.sample(rng));
+        }
+        t
+    }
+}
+
 /// `n` draws of the PPOE model `T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M`, ξᵢ ~ N(0, covsᵢ), with a
 /// fixed seed.
 pub fn sample_chain_poses(
@@ -282,21 +360,47 @@ pub fn sample_chain_poses(
     n: usize,
 ) -> Vec<Transform<f64>> {
     use rand::SeedableRng;
-    let gs: Vec<Gaussian6> = covs.iter().map(Gaussian6::new).collect();
-    let ds: Vec<Transform<f64>> = chain
-        .joints
-        .iter()
-        .zip(thetas)
-        .map(|(j, t)| j.displacement(j.clip(*t, false)))
-        .collect();
+    let model = ChainModel::new(chain, thetas, covs, Gaussian6::new);
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    (0..n)
-        .map(|_| {
-            let mut t = Transform::identity();
-            for (d, g) in ds.iter().zip(&gs) {
-                t = t * *d * ppoe::se3::exp(&g.sample(&mut rng));
-            }
-            t * chain.home
-        })
-        .collect()
+    (0..n).map(|_| model.draw(&mut rng) * chain.home).collect()
+}
+
+/// Barfoot & Furgale (IEEE T-RO 2014, §IV.C) two-pose compounding: T₁ = Exp(ξ₁),
+/// T₂ = Exp(ξ₂), ξ₁ = (π/6,0,0 | 0,2,0), ξ₂ = (0,π/4,0 | 0,0,1), Σ₁ = Σ₂ = Σ; global model
+/// Exp(ξ')·T̄ = Exp(ζ₂)·T₂·Exp(ζ₁)·T₁, ζᵢ ~ N(0, Σ), T̄ = T₂·T₁.
+pub struct TwoPose {
+    pub t1: Transform<f64>,
+    pub t2: Transform<f64>,
+    /// T̄⁻¹.
+    inv: Transform<f64>,
+}
+
+impl TwoPose {
+    pub fn barfoot_furgale() -> Self {
+        use std::f64::consts::{FRAC_PI_4, FRAC_PI_6};
+        let t1 = se3::exp(&Vector([FRAC_PI_6, 0.0, 0.0, 0.0, 2.0, 0.0]));
+        let t2 = se3::exp(&Vector([0.0, FRAC_PI_4, 0.0, 0.0, 0.0, 1.0]));
+        let inv = (t2 * t1).inverse();
+        Self { t1, t2, inv }
+    }
+
+    /// Σ = α·diag(½, 1, ½ | 10, 5, 5).
+    pub fn cov(alpha: f64) -> Mat6<f64> {
+        diag([0.5, 1.0, 0.5, 10.0, 5.0, 5.0]) * alpha
+    }
+
+    /// One draw of ξ' = Log(Exp(ζ₂)·T₂·Exp(ζ₁)·T₁·T̄⁻¹) (ζ₁ drawn first).
+    pub fn draw(&self, g: &Gaussian6, rng: &mut impl Rng) -> Vec6<f64> {
+        let x1 = g.sample(rng);
+        let x2 = g.sample(rng);
+        se3::log(&(se3::exp(&x2) * self.t2 * se3::exp(&x1) * self.t1 * self.inv))
+    }
+
+    /// The covariance of ξ' from `uncertainty::concat_globally`: (second, fourth) order.
+    pub fn concat(&self, s: &Mat6<f64>) -> (Mat6<f64>, Mat6<f64>) {
+        let (t1, t2) = (&self.t1, &self.t2);
+        let (_, c2) = uncertainty::concat_globally(t1, s, t2, s, Order::Second);
+        let (_, c4) = uncertainty::concat_globally(t1, s, t2, s, Order::Fourth);
+        (c2, c4)
+    }
 }
