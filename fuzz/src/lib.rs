@@ -194,6 +194,18 @@ pub fn gram<T: Fz, const N: usize>(rank: u8, v: &[T]) -> Matrix<T, N, N> {
 }
 
 impl CovIn {
+    /// Positive semi-definite by construction (up to the rounding of `A·Aᵀ`): a Gram
+    /// matrix, a diagonal with no negative or NaN entry, or `s·I` with s ≥ 0. Raw and
+    /// mirrored inputs may be indefinite, however small their negative eigenvalue.
+    pub fn psd_by_construction<T: Fz>(&self) -> bool {
+        match self {
+            CovIn::Raw(_) | CovIn::Sym(_) => false,
+            CovIn::Gram(..) => true,
+            CovIn::Diag(v) => v.iter().all(|x| x.get::<T>() >= T::ZERO),
+            CovIn::Scaled(s) => s.get::<T>() >= T::ZERO,
+        }
+    }
+
     /// The matrix.
     pub fn get<T: Fz>(&self) -> Mat6<T> {
         match self {
