@@ -29,6 +29,9 @@ fn num(v: &Value) -> f64 {
 }
 
 /// The seed robot's chain (from the oracle's golden file) in scalar T.
+/// The seed chain in scalar T, converted from the golden f64 values the way `ppoe-build`
+/// converts its tables (`Joint::from_f64`, `Transform::from_f64`: the f32 chain gets no
+/// subnormal-prone `1.9e-23` entries).
 fn seed_chain<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
     let joints = g["screw_axes"]
         .as_array()
@@ -38,13 +41,14 @@ fn seed_chain<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
         .map(|(s, l)| {
             let s: Vec<f64> = s.as_array().unwrap().iter().map(num).collect();
             let l: Vec<f64> = l.as_array().unwrap().iter().map(num).collect();
-            Joint::new(
+            let raw = Joint::new(
                 "j",
                 JointKind::Revolute,
-                std::array::from_fn(|i| T::lit(s[i])),
-                T::lit(l[0]),
-                T::lit(l[1]),
-            )
+                std::array::from_fn(|i| s[i]),
+                l[0],
+                l[1],
+            );
+            Joint::from_f64(&raw)
         })
         .collect();
     let h: Vec<Vec<f64>> = g["home"]
@@ -53,10 +57,8 @@ fn seed_chain<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
         .iter()
         .map(|r| r.as_array().unwrap().iter().map(num).collect())
         .collect();
-    let home = Transform::from_matrix4(&std::array::from_fn(|i| {
-        std::array::from_fn(|j| T::lit(h[i][j]))
-    }));
-    (joints, home)
+    let home = Transform::from_matrix4(&std::array::from_fn(|i| std::array::from_fn(|j| h[i][j])));
+    (joints, Transform::from_f64(&home))
 }
 
 /// The seed example's joint covariances and initial joint values.

@@ -2,7 +2,7 @@
 //! and limits; rigid forward kinematics and the PPOE.
 
 use crate::error::Error;
-use crate::linalg::{Mat3, Mat6, Matrix, Vec3, Vec6};
+use crate::linalg::{Mat3, Mat6, Matrix, Vec3, Vec6, Vector};
 use crate::scalar::Real;
 use crate::se3::{self, mirror_lower, Congruence, Pack, Transform};
 use crate::so3;
@@ -55,6 +55,24 @@ impl<T: Real> Joint<T> {
             lower,
             upper,
         }
+    }
+
+    /// The joint `j`, computed in f64 (as `ppoe-build` does), in scalar T: every value
+    /// rounded to T, then in ω and in v separately the elements below ε²·max (ε of T) set
+    /// to zero ([`Vector::without_negligible`]). That keeps T's products out of the slow
+    /// subnormal range and changes no result by more than ε² relative. `ppoe-build`'s
+    /// tables and run-time chains are built this way.
+    pub fn from_f64(j: &Joint<f64>) -> Self {
+        let s = j.screw.0.map(T::lit);
+        let w = Vector([s[0], s[1], s[2]]).without_negligible().0;
+        let v = Vector([s[3], s[4], s[5]]).without_negligible().0;
+        Self::new(
+            j.name,
+            j.kind,
+            [w[0], w[1], w[2], v[0], v[1], v[2]],
+            T::lit(j.lower),
+            T::lit(j.upper),
+        )
     }
 }
 
@@ -178,19 +196,13 @@ impl<T: Real> Joint<T> {
     /// no series branch, and ≈ 40 % fewer operations than [`se3::exp`]; ω = 0 (prismatic)
     /// gives `(I, θ·v)`. Accuracy: a few ε absolute in R and ε·‖v̂‖·max(1, |t|) in p, like
     /// [`se3::exp`], to which it falls back when 1/‖ω‖ overflows.
-    #[inline]
+    #[inline(always)]
     pub fn displacement(&self, theta: T) -> Transform<T> {
         let (w, v) = (self.screw.rotation(), self.screw.translation());
         let n = w.norm();
-        if n == T::ZERO {
-            return Transform {
-                rotation: Mat3::identity(),
-                translation: v.scale(theta),
-            };
-        }
         let inv = T::ONE / n;
         if !inv.is_finite() {
-            return se3::exp(&self.screw.scale(theta));
+            return self.displacement_degenerate(theta, n);
         }
         let (x, vh, t) = (w.scale(inv), v.scale(inv), theta * n);
         let (s, c) = t.sin_cos_r();
@@ -199,6 +211,21 @@ impl<T: Real> Joint<T> {
             rotation: so3::i_plus_aw_bw2(&x, s, omc),
             translation: vh.scale(s) + x.cross(&vh).scale(omc) + x.scale(x.dot(&vh) * (t - s)),
         }
+    }
+
+    /// [`Joint::displacement`] when 1/‖ω‖ is not finite: ω = 0 (prismatic) gives
+    /// `(I, θ·v)`, a tiny nonzero ω (or NaN) goes through [`se3::exp`]. Out of line: the
+    /// loops of the PPOE inline the common path.
+    #[cold]
+    #[inline(never)]
+    fn displacement_degenerate(&self, theta: T, n: T) -> Transform<T> {
+        if n == T::ZERO {
+            return Transform {
+                rotation: Mat3::identity(),
+                translation: self.screw.translation().scale(theta),
+            };
+        }
+        se3::exp(&self.screw.scale(theta))
     }
 }
 

@@ -83,7 +83,14 @@ impl<T: Real, const N: usize> Vector<T, N> {
         if n2.is_finite() && n2 >= T::min_positive_value() {
             return n2.sqrt();
         }
-        // Rare path: rescale so squares neither overflow nor underflow.
+        self.norm_rescaled()
+    }
+
+    /// [`Vector::norm`]'s rare path, out of line so the common one stays small enough to
+    /// inline: rescale so squares neither overflow nor underflow.
+    #[cold]
+    #[inline(never)]
+    fn norm_rescaled(&self) -> T {
         let scale = self.amax();
         if scale == T::ZERO || !scale.is_finite() {
             return scale;
@@ -102,6 +109,22 @@ impl<T: Real, const N: usize> Vector<T, N> {
             }
         }
         m
+    }
+
+    /// The vector with every element below `ε² · amax` set to zero (ε = [`Real::EPS`]).
+    ///
+    /// Such an element changes no result by more than ε² relative to the largest one, far
+    /// below the rounding of any input, but its products with other small values land in the
+    /// subnormal range, where x86 cores take a slow path (≈ 100 cycles per operation):
+    /// the f32 seed robot's `−1.9·10⁻²³` screw entries made its forward kinematics 1.4×
+    /// slower. Unchanged if `amax` is zero or not finite.
+    pub fn without_negligible(self) -> Self {
+        let m = self.amax();
+        if !m.is_finite() || m == T::ZERO {
+            return self;
+        }
+        let cut = T::EPS * T::EPS * m;
+        self.map(|x| if x.abs() < cut { T::ZERO } else { x })
     }
 
     /// Multiplies every element by `s`.
@@ -237,6 +260,17 @@ impl<T: Real, const R: usize, const C: usize> Matrix<T, R, C> {
             }
         }
         m
+    }
+
+    /// The matrix with every element below `ε² · amax` set to zero: see
+    /// [`Vector::without_negligible`].
+    pub fn without_negligible(self) -> Self {
+        let m = self.amax();
+        if !m.is_finite() || m == T::ZERO {
+            return self;
+        }
+        let cut = T::EPS * T::EPS * m;
+        self.map(|x| if x.abs() < cut { T::ZERO } else { x })
     }
 
     /// `true` if every element is finite.
@@ -671,6 +705,36 @@ approx_impls!(Matrix<R, C>, mat_iter);
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn negligible_elements_are_zeroed_relative_to_the_largest() {
+        // f32: ε² = 1.42e-14; the seed robot's 1.9e-23 goes, 3.3e-7 stays.
+        let v: Vec3<f32> = Vector([-1.864_253e-23, 1.0, -3.267_949e-7]);
+        assert_eq!(v.without_negligible().0, [0.0, 1.0, -3.267_949e-7]);
+        // Relative, not absolute: the same tiny values survive among tiny values.
+        let t: Vec3<f32> = Vector([1e-23, 2e-23, 0.0]);
+        assert_eq!(t.without_negligible(), t);
+        // f64: 1.9e-23 is above ε²·1 = 4.9e-32 and stays.
+        let w: Vec3<f64> = Vector([-1.864_252_887_470_2e-23, 1.0, 0.0]);
+        assert_eq!(w.without_negligible(), w);
+        // Just below and at the cut.
+        let cut = f64::EPSILON * f64::EPSILON * 4.0;
+        let c: Vec3<f64> = Vector([4.0, cut * 0.99, cut]);
+        assert_eq!(c.without_negligible().0, [4.0, 0.0, cut]);
+        // Non-finite or zero maximum: unchanged (NaN compared by bits).
+        for bad in [f32::NAN, f32::INFINITY] {
+            let b: Vec3<f32> = Vector([bad, 1e-30, 1.0]);
+            let out = b.without_negligible().0.map(f32::to_bits);
+            assert_eq!(out, b.0.map(f32::to_bits));
+        }
+        assert_eq!(Vec3::<f32>::zeros().without_negligible(), Vec3::zeros());
+        let m: Mat3<f32> = Matrix([
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, -1.864_253e-23],
+            [0.0, 2e-23, 1.0],
+        ]);
+        assert_eq!(m.without_negligible(), Mat3::identity());
+    }
 
     #[test]
     fn spd_inverse_and_solve() {

@@ -59,6 +59,16 @@ impl<T: Real> Transform<T> {
         out
     }
 
+    /// The transform `t`, computed in f64, in scalar T: every value rounded to T, then in
+    /// the rotation and in the translation separately the elements below ε²·max set to zero
+    /// (see [`crate::chain::Joint::from_f64`]).
+    pub fn from_f64(t: &Transform<f64>) -> Self {
+        Self {
+            rotation: Matrix(t.rotation.0.map(|r| r.map(T::lit))).without_negligible(),
+            translation: Vector(t.translation.0.map(T::lit)).without_negligible(),
+        }
+    }
+
     /// The row-major homogeneous 4×4 matrix.
     #[inline]
     pub fn to_matrix4(&self) -> [[T; 4]; 4] {

@@ -44,7 +44,8 @@ pub struct RobotChain {
 }
 
 impl RobotChain {
-    /// The joints as the core's [`ppoe::chain::Joint`]s.
+    /// The joints as the core's [`ppoe::chain::Joint`]s ([`Joint::from_f64`]: screw
+    /// elements below ε²·max of ω or of v are zero, as in the tables).
     ///
     /// `Joint` holds its name as `&'static str`, so that generated chains can be `const`
     /// items with no allocation. To build one at run time, each name is copied into a
@@ -56,14 +57,15 @@ impl RobotChain {
             .iter()
             .map(|j| {
                 let name: &'static str = Box::leak(j.name.clone().into_boxed_str());
-                Joint::new(name, j.kind, j.screw, j.lower, j.upper)
+                Joint::from_f64(&Joint::new(name, j.kind, j.screw, j.lower, j.upper))
             })
             .collect()
     }
 
-    /// The home pose M as the core's [`Transform`].
+    /// The home pose M as the core's [`Transform`] ([`Transform::from_f64`]: elements below
+    /// ε²·max of the rotation or of the translation are zero, as in the tables).
     pub fn home_transform(&self) -> Transform<f64> {
-        Transform::from_matrix4(&self.home)
+        Transform::from_f64(&Transform::from_matrix4(&self.home))
     }
 
     /// The chain as the core's [`ppoe::chain::Chain`] with `N` joints, the same values a

@@ -8,7 +8,8 @@
 
 use crate::chain::RobotChain;
 use crate::error::{Error, ErrorKind, Result};
-use ppoe::chain::JointKind;
+use ppoe::chain::{Joint, JointKind};
+use ppoe::Transform;
 use std::fmt::Write as _;
 
 /// Which scalar types to emit tables for.
@@ -295,15 +296,39 @@ fn item(
         }
     }
     if f32_table {
-        out.push_str("///\n/// The values are those of the f64 table rounded to f32.\n");
+        out.push_str(
+            "///\n/// The values are those of the f64 table rounded to f32 (elements below \
+             ε²·max of their vector zeroed, see `Joint::from_f64`).\n",
+        );
     }
     out.push_str("#[allow(clippy::approx_constant, clippy::excessive_precision)]\n");
 
-    // The expression.
+    // The expression. Screws and home pose are `Joint::<T>::from_f64` and
+    // `Transform::<T>::from_f64` of the run-time values (negligible elements zeroed), held
+    // here in f64 (exactly, for f32).
     let f = |x: f64| float_lit(x, f32_table);
+    let core_screw = |j: &crate::chain::ChainJoint| -> [f64; 6] {
+        let raw = Joint::new("", j.kind, j.screw, j.lower, j.upper);
+        if f32_table {
+            Joint::<f32>::from_f64(&raw).screw.0.map(f64::from)
+        } else {
+            Joint::<f64>::from_f64(&raw).screw.0
+        }
+    };
+    let raw_home = Transform::from_matrix4(&chain.home);
+    let home = if f32_table {
+        Transform::<f32>::from_f64(&raw_home)
+            .to_matrix4()
+            .map(|r| r.map(f64::from))
+    } else {
+        Transform::<f64>::from_f64(&raw_home).to_matrix4()
+    };
     let mut joints = Vec::with_capacity(n);
     for j in &chain.joints {
-        let screw = j.screw.iter().map(|&x| f(x)).collect::<Result<Vec<_>>>()?;
+        let screw = core_screw(j)
+            .iter()
+            .map(|&x| f(x))
+            .collect::<Result<Vec<_>>>()?;
         joints.push(Node::call(
             "ppoe::chain::Joint::new",
             vec![
@@ -316,13 +341,13 @@ fn item(
         ));
     }
     let mut rows = Vec::with_capacity(3);
-    for row in &chain.home[..3] {
+    for row in &home[..3] {
         rows.push(Node::array(
             row[..3].iter().map(|&x| f(x)).collect::<Result<Vec<_>>>()?,
         ));
     }
     let translation = Node::array(
-        chain.home[..3]
+        home[..3]
             .iter()
             .map(|row| f(row[3]))
             .collect::<Result<Vec<_>>>()?,

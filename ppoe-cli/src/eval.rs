@@ -154,24 +154,11 @@ pub fn eval(
     })
 }
 
-/// The runtime chain in scalar T: the joints `ppoe-build` computes (rounded to T).
+/// The runtime chain in scalar T: the joints `ppoe-build` computes, converted like its
+/// tables ([`Joint::from_f64`], [`Transform::from_f64`]).
 pub fn core_joints<T: Real>(robot: &RobotChain) -> (Vec<Joint<T>>, Transform<T>) {
-    let joints = robot
-        .to_core_joints()
-        .into_iter()
-        .map(|j| {
-            Joint::new(
-                j.name,
-                j.kind,
-                j.screw.0.map(T::lit),
-                T::lit(j.lower),
-                T::lit(j.upper),
-            )
-        })
-        .collect();
-    let home = robot.home_transform();
-    let home = Transform::from_matrix4(&home.to_matrix4().map(|r| r.map(T::lit)));
-    (joints, home)
+    let joints = robot.to_core_joints().iter().map(Joint::from_f64).collect();
+    (joints, Transform::from_f64(&robot.home_transform()))
 }
 
 /// The mean pose and covariance of one case (already count-checked), in scalar T, with
