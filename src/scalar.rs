@@ -165,6 +165,15 @@ impl Real for f32 {
     }
 }
 
+/// The Cephes sin and cos polynomials of [`sin_cos_f32`], for |r| ≤ π/4.
+#[inline(always)]
+fn sin_cos_f32_kernel(r: f32) -> (f32, f32) {
+    let z = r * r;
+    let s = ((-1.951_529_6e-4 * z + 8.332_161e-3) * z - 1.666_665_5e-1) * z * r + r;
+    let c = ((2.443_315_7e-5 * z - 1.388_731_6e-3) * z + 4.166_664_6e-2) * z * z - 0.5 * z + 1.0;
+    (s, c)
+}
+
 /// See [`Real::sin_cos_r`] for `f32`.
 #[inline]
 fn sin_cos_f32(x: f32) -> (f32, f32) {
@@ -178,11 +187,14 @@ fn sin_cos_f32(x: f32) -> (f32, f32) {
     // Round to nearest with the 1.5·2²³ trick (exact for |y| < 2²²; here |y| ≤ 6367): two
     // additions instead of a software rintf on cores without a rounding instruction.
     const MAGIC: f32 = 12_582_912.0;
+    // |x| ≤ π/4 (most joint angles): k = 0, so r = x and quadrant 0 exactly; skipping the
+    // reduction gives the same bits with a shorter dependency chain.
+    if x.abs() <= core::f32::consts::FRAC_PI_4 {
+        return sin_cos_f32_kernel(x);
+    }
     let k = (x * core::f32::consts::FRAC_2_PI + MAGIC) - MAGIC;
     let r = ((x - k * P1) - k * P2) - k * P3;
-    let z = r * r;
-    let s = ((-1.951_529_6e-4 * z + 8.332_161e-3) * z - 1.666_665_5e-1) * z * r + r;
-    let c = ((2.443_315_7e-5 * z - 1.388_731_6e-3) * z + 4.166_664_6e-2) * z * z - 0.5 * z + 1.0;
+    let (s, c) = sin_cos_f32_kernel(r);
     // k is an integer-valued float with |k| ≤ 6367, so the cast is exact.
     match (k as i32) & 3 {
         0 => (s, c),
