@@ -194,45 +194,28 @@ impl<T: Real> Lane for T {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Pack<T, const W: usize>(pub(crate) [T; W]);
 
-impl<T: Real, const W: usize> core::ops::Add for Pack<T, W> {
-    type Output = Self;
-    #[inline(always)]
-    fn add(mut self, o: Self) -> Self {
-        for (a, b) in self.0.iter_mut().zip(o.0) {
-            *a += b;
+/// Element-wise `Pack ∘ Pack` operators, lane by lane.
+macro_rules! pack_ops {
+    ($($trait:ident $method:ident $assign:tt),*) => {$(
+        impl<T: Real, const W: usize> core::ops::$trait for Pack<T, W> {
+            type Output = Self;
+            #[inline(always)]
+            fn $method(mut self, o: Self) -> Self {
+                for (a, b) in self.0.iter_mut().zip(o.0) {
+                    *a $assign b;
+                }
+                self
+            }
         }
-        self
-    }
+    )*};
 }
 
-impl<T: Real, const W: usize> core::ops::Sub for Pack<T, W> {
-    type Output = Self;
-    #[inline(always)]
-    fn sub(mut self, o: Self) -> Self {
-        for (a, b) in self.0.iter_mut().zip(o.0) {
-            *a -= b;
-        }
-        self
-    }
-}
-
-impl<T: Real, const W: usize> core::ops::Mul for Pack<T, W> {
-    type Output = Self;
-    #[inline(always)]
-    fn mul(mut self, o: Self) -> Self {
-        for (a, b) in self.0.iter_mut().zip(o.0) {
-            *a *= b;
-        }
-        self
-    }
-}
+pack_ops!(Add add +=, Sub sub -=, Mul mul *=);
 
 impl<T: Real, const W: usize> core::ops::AddAssign for Pack<T, W> {
     #[inline(always)]
     fn add_assign(&mut self, o: Self) {
-        for (a, b) in self.0.iter_mut().zip(o.0) {
-            *a += b;
-        }
+        *self = *self + o;
     }
 }
 
