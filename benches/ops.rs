@@ -33,6 +33,14 @@ fn num(v: &Value) -> f64 {
 /// converts its tables (`Joint::from_f64`, `Transform::from_f64`: the f32 chain gets no
 /// subnormal-prone `1.9e-23` entries).
 fn seed_chain<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
+    let (joints, home) = seed_chain_rounded::<f64>(g);
+    let joints = joints.iter().map(Joint::from_f64).collect();
+    (joints, Transform::from_f64(&home))
+}
+
+/// The seed chain with every golden value only rounded to T (no `from_f64`): in f32 it keeps
+/// the `−1.9e-23` entries whose products are subnormal (the `fk_seed/rounded_only` bench).
+fn seed_chain_rounded<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
     let joints = g["screw_axes"]
         .as_array()
         .unwrap()
@@ -41,14 +49,13 @@ fn seed_chain<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
         .map(|(s, l)| {
             let s: Vec<f64> = s.as_array().unwrap().iter().map(num).collect();
             let l: Vec<f64> = l.as_array().unwrap().iter().map(num).collect();
-            let raw = Joint::new(
+            Joint::new(
                 "j",
                 JointKind::Revolute,
-                std::array::from_fn(|i| s[i]),
-                l[0],
-                l[1],
-            );
-            Joint::from_f64(&raw)
+                std::array::from_fn(|i| T::lit(s[i])),
+                T::lit(l[0]),
+                T::lit(l[1]),
+            )
         })
         .collect();
     let h: Vec<Vec<f64>> = g["home"]
@@ -57,8 +64,10 @@ fn seed_chain<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
         .iter()
         .map(|r| r.as_array().unwrap().iter().map(num).collect())
         .collect();
-    let home = Transform::from_matrix4(&std::array::from_fn(|i| std::array::from_fn(|j| h[i][j])));
-    (joints, Transform::from_f64(&home))
+    let home = Transform::from_matrix4(&std::array::from_fn(|i| {
+        std::array::from_fn(|j| T::lit(h[i][j]))
+    }));
+    (joints, home)
 }
 
 /// The seed example's joint covariances and initial joint values.
@@ -186,6 +195,15 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     // The rigid part alone: the same clipped displacements and their serial product.
     c.bench_function(&format!("fk_seed/ours/{t}"), |b| {
         b.iter(|| chain.forward_kinematics(black_box(&thetas)))
+    });
+    // The same with the golden values only rounded to T (no `Joint::from_f64`).
+    let (rj, rh) = seed_chain_rounded::<T>(&g);
+    let rounded = ChainRef {
+        joints: &rj,
+        home: rh,
+    };
+    c.bench_function(&format!("fk_seed/rounded_only/{t}"), |b| {
+        b.iter(|| rounded.forward_kinematics(black_box(&thetas)))
     });
     // The nalgebra baseline, checked to give the same numbers first.
     let na = baseline_nalgebra::NaChain {
@@ -360,6 +378,14 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
     let j3 = joints.clone();
     v.push(op(format!("fk_seed/ours/{t}"), move || {
         let chain = ChainRef { joints: &j3, home };
+        chain.forward_kinematics(black_box(&thetas))
+    }));
+    let (rj, rh) = seed_chain_rounded::<T>(&g);
+    v.push(op(format!("fk_seed/rounded_only/{t}"), move || {
+        let chain = ChainRef {
+            joints: &rj,
+            home: rh,
+        };
         chain.forward_kinematics(black_box(&thetas))
     }));
     v.push(op(format!("ppoe_seed/nalgebra/{t}"), move || {

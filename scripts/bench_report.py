@@ -445,9 +445,24 @@ def render(d):
           " the tip backwards (no transport after the loop, lever arms from each joint to the tip),"
           " a shear-first structured transport accumulated into one triangle (no 6×6 temporaries),"
           " independent transports packed into SIMD lanes (`Real::TRANSPORT_LANES`: 2 for f64, 4 for"
-          " f32 on SSE2/NEON), and a joint displacement without series branch or division by the"
-          " angle. Tried without a measurable gain and dropped: computing the displacements of up to"
-          " 8 joints ahead of the serial product so that their sin/cos latencies overlap.")
+          " f32 on SSE2/NEON), a joint displacement without series branch or division by the"
+          " angle, and for unit screw axes (every URDF joint) without square root or division at"
+          " all (‖ω‖ and 1/‖ω‖ to first order in ‖ω‖² − 1, exact to ε within √ε of 1). Tried"
+          " without a measurable gain and dropped: computing the displacements of up to 8 joints"
+          " ahead of the serial product so that their sin/cos latencies overlap; a branch-free"
+          " quadrant selection in the f32 sin/cos (slower: the quadrant branch predicts well);"
+          " the serial product on rows packed as 4-lane vectors (slower: packing costs more than"
+          " it saves); gathering only the covariance entries the transport reads (no change).")
+    fr32, fo32 = c("fk_seed/rounded_only/f32"), c("fk_seed/ours/f32")
+    if fr32 and fo32:
+        p("- Subnormals: the seed URDF's rpy angles leave entries of −1.9·10⁻²³ in two screw axes"
+          " and the home pose. Rounded to f32 they are normal, but their products are subnormal,"
+          " which x86 cores compute on a slow path. With those entries (`fk_seed/rounded_only`)"
+          " the f32 forward kinematics takes %s µs, %.2f× the %s µs of the chain as ppoe-build"
+          " converts it (`Joint::from_f64` / `Transform::from_f64` zero the elements below ε²·max"
+          " of their vector; no result moves by more than ε² relative). f64 has no such effect"
+          " (%s vs %s µs)." % (us(fr32), fr32 / fo32, us(fo32), us(c("fk_seed/rounded_only/f64")),
+                               us(c("fk_seed/ours/f64"))))
     if s32 and s64:
         e64, e32 = c("so3_exp/f64"), c("so3_exp/f32")
         line = "- Host f32/f64 PPOE time: %.2f." % (s32 / s64)
@@ -456,14 +471,18 @@ def render(d):
             if e32 > 1.2 * e64:
                 line += (": the f32 sin/cos is our Cody–Waite reduction + polynomial, written for the"
                          " M4F (libm's `sinf` computes in f64, which the M4F emulates); on this core its"
-                         " latency exceeds that of libm's f64 `sincos` kernel for small angles.")
+                         " latency exceeds that of libm's f64 `sincos` kernel.")
             else:
-                line += ", so the f32 sin/cos does not explain the gap."
+                line += (" (the f32 sin/cos skips the range reduction for |x| ≤ π/4, like libm's f64"
+                         " kernel), so sin/cos does not explain a gap.")
         i64, i32 = irc.get("ppoe_seed/ours/f64"), irc.get("ppoe_seed/ours/f32")
-        if i64 and i32:
-            line += (" Instructions per call (callgrind): f32 %.0f, f64 %.0f, so the rest of the gap is"
-                     " in the schedule, not in the amount of work; its cause was not isolated (no"
+        if i64 and i32 and s32 > s64:
+            line += (" Instructions per call (callgrind): f32 %.0f, f64 %.0f. The rest of the gap is"
+                     " in how the compiler vectorises the 3-element rows of f32 transforms for SSE2"
+                     " (many shuffles), seen in the disassembly; not measured by counters (no"
                      " hardware counters on this VM)." % (i32, i64))
+        elif i64 and i32:
+            line += " Instructions per call (callgrind): f32 %.0f, f64 %.0f." % (i32, i64)
         p(line)
     return "\n".join(L) + "\n"
 

@@ -23,16 +23,18 @@ SANDWICH_FULL = (27 + 27, 18 + 18 + 9)
 SANDWICH_SYM = (27 + 18, 18 + 12 + 6)
 
 PIECES = {
-    # Joint::displacement: norm (3 mul, 2 add, sqrt), 1/norm (div), unit axis x and v/|w|
+    # Joint::displacement, unit-axis path (|w|^2 within sqrt(eps) of 1, every URDF joint):
+    # |w|^2 (3 mul, 2 add), d = |w|^2 - 1 (1 add), h = d/2 (1 mul), |w| = 1 + h and
+    # 1/|w| = 1 - h (2 add), no division or square root; unit axis x and v/|w|
     # (6 mul), t = theta*|w| (1 mul), sin_cos, 1 - cos (1 add); i_plus_aw_bw2: the 6
     # products w_i w_j, 3 diagonal entries (2 add, 1 mul), 6 off-diagonal entries from 6
     # distinct products and 1 add each; translation s*v + (1-c)*(x cross v) + (t-s)(x.v)x:
     # 3 + (6 mul, 3 sub) + 3 + (3 mul, 2 add) + (1 sub, 1 mul) + 3 mul, 2 vector adds.
     "exp": {
-        "mul": 3 + 6 + 1 + (6 + 3 + 3 + 3) + (3 + 6 + 3 + 3 + 1 + 3),
-        "add": 2 + 1 + (6 + 6) + (3 + 2 + 1 + 6),
-        "div": 1,
-        "sqrt": 1,
+        "mul": 3 + 1 + 6 + 1 + (6 + 3 + 3 + 3) + (3 + 6 + 3 + 3 + 1 + 3),
+        "add": 2 + 1 + 2 + 1 + (6 + 6) + (3 + 2 + 1 + 6),
+        "div": 0,
+        "sqrt": 0,
         "sin_cos": 1,
     },
     # g = D * g: R1 R2, R1 p2 + p1.
