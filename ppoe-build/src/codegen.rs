@@ -15,7 +15,8 @@ use std::fmt::Write as _;
 /// Which scalar types to emit tables for.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Scalar {
-    /// `NAME_F32: Chain<f32, N>` only: each f64 value converted with `as f32`.
+    /// `NAME_F32: Chain<f32, N>` only: the f64 values converted by `Joint::from_f64` and
+    /// `Transform::from_f64` (rounded, negligible elements zeroed).
     F32,
     /// `NAME: Chain<f64, N>` only (the default).
     #[default]

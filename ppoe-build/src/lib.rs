@@ -80,8 +80,14 @@
 //! * [`Scalar::F64`] (default) emits `NAME: Chain<f64, N>`, [`Scalar::F32`] emits
 //!   `NAME_F32: Chain<f32, N>`, [`Scalar::Both`] emits both.
 //! * f64 values are written in Rust's shortest round-trip form (`{:?}`), so the const holds
-//!   bit for bit the values [`Config::chain`] computes; f32 tables hold each f64 value
-//!   converted with `as f32`. Unbounded limits are `f64::INFINITY` / `f64::NEG_INFINITY`.
+//!   bit for bit the values [`Config::chain`] computes, converted by
+//!   [`ppoe::chain::Joint::from_f64`] and [`ppoe::Transform::from_f64`]: in f64 that only
+//!   zeroes elements below ε²·max of their 3-vector (ω, v, rotation, translation), which real
+//!   robots do not have. f32 tables hold the same conversion to f32: each value rounded with
+//!   `as f32`, then elements below ε₃₂²·max zeroed. URDF rpy angles such as 1.5708 leave
+//!   entries like −1.9·10⁻²³; kept in f32, their products are subnormal, and x86 cores compute
+//!   those on a slow path (the seed robot's f32 forward kinematics took 1.5× as long).
+//!   Unbounded limits are `f64::INFINITY` / `f64::NEG_INFINITY`.
 //! * The output is deterministic (it depends on the URDF's bytes and the options only; the
 //!   doc comment names the file, not its directory) and already formatted as rustfmt
 //!   formats it.
