@@ -70,6 +70,28 @@ fn seed_chain_rounded<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
     (joints, home)
 }
 
+/// The same chain and covariances as nalgebra types, for the baseline.
+fn nalgebra_inputs<T: Real + nalgebra::RealField>(
+    joints: &[Joint<T>],
+    home: Transform<T>,
+    covs: &[Mat6<T>],
+) -> (baseline_nalgebra::NaChain<T>, Vec<nalgebra::Matrix6<T>>) {
+    let na = baseline_nalgebra::NaChain {
+        screws: joints
+            .iter()
+            .map(|j| nalgebra::Vector6::from_column_slice(&j.screw.0))
+            .collect(),
+        home: nalgebra::Matrix4::from_fn(|i, j| home.to_matrix4()[i][j]),
+        lower: joints.iter().map(|j| j.lower).collect(),
+        upper: joints.iter().map(|j| j.upper).collect(),
+    };
+    let na_covs = covs
+        .iter()
+        .map(|m| nalgebra::Matrix6::from_fn(|i, j| m.0[i][j]))
+        .collect();
+    (na, na_covs)
+}
+
 /// The seed example's joint covariances and initial joint values.
 fn seed_inputs<T: Real>() -> ([T; 6], [Mat6<T>; 6]) {
     let mut covs = [Mat6::zeros(); 6];
@@ -206,19 +228,7 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
         b.iter(|| rounded.forward_kinematics(black_box(&thetas)))
     });
     // The nalgebra baseline, checked to give the same numbers first.
-    let na = baseline_nalgebra::NaChain {
-        screws: joints
-            .iter()
-            .map(|j| nalgebra::Vector6::from_column_slice(&j.screw.0))
-            .collect(),
-        home: nalgebra::Matrix4::from_fn(|i, j| home.to_matrix4()[i][j]),
-        lower: joints.iter().map(|j| j.lower).collect(),
-        upper: joints.iter().map(|j| j.upper).collect(),
-    };
-    let na_covs: Vec<nalgebra::Matrix6<T>> = covs
-        .iter()
-        .map(|m| nalgebra::Matrix6::from_fn(|i, j| m.0[i][j]))
-        .collect();
+    let (na, na_covs) = nalgebra_inputs(&joints, home, &covs);
     let (na_pose, na_cov) = baseline_nalgebra::ppoe(&na, &thetas, &na_covs);
     let ours = chain.ppoe(&thetas, &covs, Convention::Right).unwrap();
     let tol = T::EPS * T::lit(1e3);
@@ -309,19 +319,7 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
     let g = golden_seed();
     let (joints, home) = seed_chain::<T>(&g);
     let (thetas, covs) = seed_inputs::<T>();
-    let na = baseline_nalgebra::NaChain {
-        screws: joints
-            .iter()
-            .map(|j| nalgebra::Vector6::from_column_slice(&j.screw.0))
-            .collect(),
-        home: nalgebra::Matrix4::from_fn(|i, j| home.to_matrix4()[i][j]),
-        lower: joints.iter().map(|j| j.lower).collect(),
-        upper: joints.iter().map(|j| j.upper).collect(),
-    };
-    let na_covs: Vec<nalgebra::Matrix6<T>> = covs
-        .iter()
-        .map(|m| nalgebra::Matrix6::from_fn(|i, j| m.0[i][j]))
-        .collect();
+    let (na, na_covs) = nalgebra_inputs(&joints, home, &covs);
     let tip = ChainRef {
         joints: &joints,
         home,
