@@ -315,7 +315,6 @@ impl<'a, T: Real> ChainRef<'a, T> {
         }
         // The lane count is a constant of T: only one arm is compiled in.
         Ok(match T::TRANSPORT_LANES {
-            4 => self.ppoe_lanes::<4>(thetas, covs, convention),
             2 => self.ppoe_lanes::<2>(thetas, covs, convention),
             _ => self.ppoe_lanes::<1>(thetas, covs, convention),
         })
@@ -330,7 +329,8 @@ impl<'a, T: Real> ChainRef<'a, T> {
         convention: Convention,
     ) -> UncertainPose<T> {
         let clip_continuous = convention == Convention::Pytransform3d;
-        let mut sum = TransportSum::<T, W>::new();
+        let zero = Mat6::zeros();
+        let mut sum = TransportSum::<T, W>::new(&zero);
         let pose = if convention == Convention::Left {
             // Base frame: Σ_left = Σᵢ Ad(Pᵢ)·covᵢ·Ad(Pᵢ)ᵀ, Pᵢ = D₁…Dᵢ (the reference's sum
             // moved by Ad(Pₙ)); one transport per joint and none at the end.
@@ -548,16 +548,20 @@ impl<T: Real, const N: usize> Chain<T, N> {
 /// [`Congruence::add_lower_packed`]).
 struct TransportSum<'c, T: Real, const W: usize> {
     lanes: [[Pack<T, W>; 6]; 6],
-    pending: [(Congruence<T>, Option<&'c Mat6<T>>); W],
+    pending: [(Congruence<T>, &'c Mat6<T>); W],
+    /// Zero: the covariance of the lanes left over at the end.
+    zero: &'c Mat6<T>,
     n: usize,
 }
 
 impl<'c, T: Real, const W: usize> TransportSum<'c, T, W> {
+    /// An empty sum; `zero` must be the zero matrix (it pads the last group of lanes).
     #[inline(always)]
-    fn new() -> Self {
+    fn new(zero: &'c Mat6<T>) -> Self {
         Self {
             lanes: [[Pack([T::ZERO; W]); 6]; 6],
-            pending: [(Congruence::of_inverse(&Transform::identity()), None); W],
+            pending: [(Congruence::of_inverse(&Transform::identity()), zero); W],
+            zero,
             n: 0,
         }
     }
@@ -566,7 +570,7 @@ impl<'c, T: Real, const W: usize> TransportSum<'c, T, W> {
     #[inline(always)]
     fn add(&mut self, t: Congruence<T>, cov: &'c Mat6<T>) {
         if let Some(slot) = self.pending.get_mut(self.n) {
-            *slot = (t, Some(cov));
+            *slot = (t, cov);
         }
         self.n += 1;
         if self.n >= W {
@@ -576,14 +580,16 @@ impl<'c, T: Real, const W: usize> TransportSum<'c, T, W> {
     }
 
     /// The sum, exactly symmetric. Pending terms are computed with zero covariances in
-    /// the unused lanes (which add exact zeros).
+    /// the unused lanes (which add exact zeros). Borrows (a by-value `self` was copied
+    /// whole, 0.8 kB, before the last group).
     #[inline(always)]
-    fn finish(mut self) -> Mat6<T> {
+    fn finish(&mut self) -> Mat6<T> {
         if self.n > 0 {
             for slot in self.pending.iter_mut().skip(self.n) {
-                slot.1 = None;
+                slot.1 = self.zero;
             }
             Congruence::add_lower_packed(&self.pending, &mut self.lanes);
+            self.n = 0;
         }
         let mut acc = [[T::ZERO; 6]; 6];
         for (arow, lrow) in acc.iter_mut().zip(&self.lanes) {

@@ -219,6 +219,19 @@ impl<T: Real, const W: usize> core::ops::AddAssign for Pack<T, W> {
     }
 }
 
+impl<T: Real, const W: usize> Pack<T, W> {
+    /// The pack whose lane k is `f(k)`.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane k from f(k)
+    fn gather(f: impl Fn(usize) -> T) -> Self {
+        let mut a = [T::ZERO; W];
+        for k in 0..W {
+            a[k] = f(k);
+        }
+        Pack(a)
+    }
+}
+
 impl<T: Real, const W: usize> Lane for Pack<T, W> {
     #[inline(always)]
     fn zero() -> Self {
@@ -260,33 +273,31 @@ impl<T: Real> Congruence<T> {
         transport_lower(&self.r, &self.q, &cov.0, acc);
     }
 
-    /// W congruences side by side: adds the lower triangle of congruence k applied to its
-    /// covariance (`None`: zero) to lane k of `acc`. The same operations on [`Pack`] lanes, which the
+    /// W congruences side by side: adds the lower triangle of congruence k applied to
+    /// covariance k to lane k of `acc`. The same operations on [`Pack`] lanes, which the
     /// optimiser maps to SIMD where the target has it (SSE2, NEON): the PPOE's transports
     /// are independent of each other, so packing them needs no shuffle inside the
-    /// transport.
+    /// transport. Every pack is built whole from its W lanes (no zeroed buffer filled lane
+    /// by lane: that compiled to a `memset` call and scalar stores that the vector loads
+    /// then waited on).
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // a gather: lane k of every element, by index
     pub(crate) fn add_lower_packed<const W: usize>(
-        items: &[(Self, Option<&Mat6<T>>); W],
+        items: &[(Self, &Mat6<T>); W],
         acc: &mut [[Pack<T, W>; 6]; 6],
     ) {
         let mut r = [[Pack::zero(); 3]; 3];
         let mut q = [Pack::zero(); 3];
         let mut c = [[Pack::zero(); 6]; 6];
-        for (k, (g, cov)) in items.iter().enumerate() {
-            for i in 0..3 {
-                for j in 0..3 {
-                    r[i][j].0[k] = g.r[i][j];
-                }
-                q[i].0[k] = g.q[i];
+        for i in 0..3 {
+            for j in 0..3 {
+                r[i][j] = Pack::gather(|k| items[k].0.r[i][j]);
             }
-            if let Some(cov) = cov {
-                for i in 0..6 {
-                    for j in 0..6 {
-                        c[i][j].0[k] = cov.0[i][j];
-                    }
-                }
+            q[i] = Pack::gather(|k| items[k].0.q[i]);
+        }
+        for i in 0..6 {
+            for j in 0..6 {
+                c[i][j] = Pack::gather(|k| items[k].1 .0[i][j]);
             }
         }
         transport_lower(&r, &q, &c, acc);
