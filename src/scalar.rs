@@ -129,10 +129,15 @@ impl Real for f64 {
     /// neighbouring joints' work (f64 PPOE ≈ 10 % faster on x86-64).
     #[inline(always)]
     fn sin_cos_r(self) -> (f64, f64) {
-        // libm's own test on the high word: 2⁻²⁷·√2 ≤ |x| ≲ π/4 goes to the kernels.
+        // libm's own tests on the high word: |x| ≲ π/4 goes to the kernels, and below
+        // 2⁻²⁷·√2 libm returns (x, 1) (both exact to rounding; θ = 0 is common).
         let ix = ((self.to_bits() >> 32) as u32) & 0x7fff_ffff;
-        if (0x3e46_a09e..=0x3fe9_21fb).contains(&ix) {
-            sin_cos_f64_kernel(self)
+        if ix <= 0x3fe9_21fb {
+            if ix < 0x3e46_a09e {
+                (self, 1.0)
+            } else {
+                sin_cos_f64_kernel(self)
+            }
         } else {
             sin_cos_f64_libm(self)
         }
@@ -163,14 +168,16 @@ impl Real for f32 {
         n as f32
     }
 
-    /// f32-native sine and cosine (libm's `sinf`/`cosf` compute in f64, which costs
-    /// ≈2,500 instructions per call on an M4F that emulates f64 in software).
+    /// f32-native sine and cosine, in f32 and integer arithmetic only (libm's `sinf`/`cosf`
+    /// compute in f64, which an M4F emulates in software at ≈2,500 instructions a call).
     ///
-    /// Method: Cody–Waite reduction by π/2 with a three-part constant (exact products for
-    /// |k| < 2¹⁵), then the Cephes minimax polynomials for sin and cos on [−π/4, π/4]
-    /// (Moshier, *Methods and Programs for Mathematical Functions*, 1989), all in f32.
-    /// Accuracy (tested against f64 over |x| ≤ 10⁴): absolute error ≤ 10⁻⁷ (measured
-    /// 7.6·10⁻⁸, 0.64 ulp of 1). Beyond |x| = 10⁴ it falls back to libm.
+    /// Method: for |x| ≤ π/4 the Cephes minimax polynomials for sin and cos (Moshier,
+    /// *Methods and Programs for Mathematical Functions*, 1989) directly; up to |x| = 10⁴
+    /// a Cody–Waite reduction by π/2 with a three-part constant (exact products for
+    /// |k| < 2¹⁵) first; beyond, a Payne–Hanek reduction in 64-bit integers
+    /// (`reduce_pio2_f32`). Accuracy against f64: absolute error ≤ 10⁻⁷ everywhere —
+    /// measured 7.6·10⁻⁸ (0.64 ulp of 1) on a fine sweep of |x| ≤ 10⁴, and 7.9·10⁻⁸ on
+    /// *every* f32 above 10⁴ (an exhaustive test, `--ignored`). NaN and ±∞ give NaN.
     #[inline(always)]
     fn sin_cos_r(self) -> (f32, f32) {
         sin_cos_f32(self)
@@ -206,7 +213,7 @@ fn sin_cos_f64_kernel(x: f64) -> (f64, f64) {
     (s, c)
 }
 
-/// `libm::sincos` out of line: the rare arguments (tiny, beyond π/4, non-finite) of
+/// `libm::sincos` out of line: the arguments beyond π/4 and the non-finite ones of
 /// [`Real::sin_cos_r`] for `f64`.
 #[inline(never)]
 fn sin_cos_f64_libm(x: f64) -> (f64, f64) {
@@ -233,7 +240,7 @@ fn sin_cos_f32(x: f32) -> (f32, f32) {
         return sin_cos_f32_kernel(x);
     }
     if x.is_nan() || x.abs() > 1.0e4 {
-        return sin_cos_f32_libm(x);
+        return sin_cos_f32_large(x);
     }
     // π/2 = P1 + P2 + P3, P1 and P2 with few significant bits so k·P1, k·P2 are exact.
     const P1: f32 = 1.570_312_5;
@@ -244,9 +251,15 @@ fn sin_cos_f32(x: f32) -> (f32, f32) {
     const MAGIC: f32 = 12_582_912.0;
     let k = (x * core::f32::consts::FRAC_2_PI + MAGIC) - MAGIC;
     let r = ((x - k * P1) - k * P2) - k * P3;
-    let (s, c) = sin_cos_f32_kernel(r);
     // k is an integer-valued float with |k| ≤ 6367, so the cast is exact.
-    match (k as i32) & 3 {
+    sin_cos_f32_quadrant(k as i32 as u32, r)
+}
+
+/// `(sin x, cos x)` from the quadrant `k` (mod 4) and the reduced `r` of x = k·π/2 + r.
+#[inline(always)]
+fn sin_cos_f32_quadrant(k: u32, r: f32) -> (f32, f32) {
+    let (s, c) = sin_cos_f32_kernel(r);
+    match k & 3 {
         0 => (s, c),
         1 => (c, -s),
         2 => (-s, -c),
@@ -254,11 +267,79 @@ fn sin_cos_f32(x: f32) -> (f32, f32) {
     }
 }
 
-/// libm's `sinf`/`cosf` out of line, for NaN and |x| > 10⁴.
+/// The bits of 2/π after the binary point, 32 a word (2/π = Σ Fᵢ·2^(−32i) for i ≥ 1),
+/// behind a zero word for the integer part: 224 bits, enough for the largest f32.
+const TWO_OVER_PI: [u32; 8] = [
+    0,
+    0xa2f9_836e,
+    0x4e44_1529,
+    0xfc27_57d1,
+    0xf534_ddc0,
+    0xdb62_9599,
+    0x3c43_9041,
+    0xfe51_63ab,
+];
+
+/// ⌊a·b / 2⁶⁴⌋ from 32-bit halves (no 128-bit multiply, which is a library call on
+/// Cortex-M).
+#[inline(always)]
+fn mul_hi_u64(a: u64, b: u64) -> u64 {
+    let (a1, a0) = (a >> 32, a & 0xffff_ffff);
+    let (b1, b0) = (b >> 32, b & 0xffff_ffff);
+    let (p00, p01, p10) = (a0 * b0, a0 * b1, a1 * b0);
+    let mid = (p00 >> 32) + (p01 & 0xffff_ffff) + (p10 & 0xffff_ffff);
+    a1 * b1 + (p01 >> 32) + (p10 >> 32) + (mid >> 32)
+}
+
+/// Payne–Hanek reduction for finite x > 10⁴ (f32): `(k mod 4, r)` with
+/// x = k·π/2 + r, |r| ≤ π/4, in integer arithmetic only.
+///
+/// Method: x = m·2ᵉ (m < 2²⁴) times the 96 bits of 2/π from weight 2^(1−e) on, as an
+/// exact 120-bit fixed-point product; the bits of 2/π above that window add multiples of
+/// 4 and those below it less than 2⁻⁷⁰ of a quadrant. The fraction rounded to the
+/// nearest quadrant, kept to 64 bits, times π/2 (64-bit fixed point) is r, rounded once
+/// to f32. Error: ½ ulp of r plus 2⁻⁶¹ absolute, far below the kernel's (Payne & Hanek,
+/// *Radian reduction for trigonometric functions*, SIGNUM Newsletter 18, 1983; the
+/// fixed-point layout is ours).
+#[inline(always)]
+fn reduce_pio2_f32(x: f32) -> (u32, f32) {
+    /// π/2·2⁶², rounded to nearest.
+    const PIO2_Q62: u64 = 0x6487_ed51_10b4_611a;
+    let bits = x.to_bits();
+    let m = u64::from((bits & 0x7f_ffff) | 0x80_0000);
+    // x = m·2ᵉ with e = exponent − 150 ∈ [−10, 104] for 10⁴ < x < 2¹²⁸. The window
+    // starts at bit j = e − 1 of 2/π (weight 2⁻ʲ), which is bit p = j + 31 of the table
+    // counted from the top of its zero word.
+    let p = ((bits >> 23) & 0xff).wrapping_sub(150 - 30);
+    let (k, sh) = ((p >> 5) as usize, p & 31);
+    let word = |i: usize| -> u64 {
+        let at = |n: usize| u64::from(TWO_OVER_PI.get(n).copied().unwrap_or(0));
+        ((((at(k + i) << 32) | at(k + i + 1)) << sh) >> 32) & 0xffff_ffff
+    };
+    // m·(w₂·2⁶⁴ + w₁·2³² + w₀) = hi·2⁶⁴ + lo, in units of 2⁻⁹⁴ quadrants.
+    let (p2, p1, p0) = (m * word(0), m * word(1), m * word(2));
+    let (lo, carry) = p0.overflowing_add(p1 << 32);
+    let hi = p2 + (p1 >> 32) + u64::from(carry);
+    // Quadrant count: bits 94 and up; the fraction below it, to 64 bits (units 2⁻⁶⁴).
+    let frac = ((hi & 0x3fff_ffff) << 34) | (lo >> 30);
+    let half = frac >> 63; // fraction ≥ ½: round the quadrant up, r negative
+    let k = ((hi >> 30) + half) as u32;
+    let f = frac as i64; // frac − 2⁶⁴·half: the signed fraction of a quadrant
+    let r = mul_hi_u64(f.unsigned_abs(), PIO2_Q62) as f32 * f32::from_bits(0x2080_0000); // ·2⁻⁶²
+    (k, if f < 0 { -r } else { r })
+}
+
+/// sin and cos of NaN, ±∞ and |x| > 10⁴ (f32): [`reduce_pio2_f32`], then the same
+/// kernel. Out of line: no joint angle gets here.
 #[cold]
 #[inline(never)]
-fn sin_cos_f32_libm(x: f32) -> (f32, f32) {
-    (libm::sinf(x), libm::cosf(x))
+fn sin_cos_f32_large(x: f32) -> (f32, f32) {
+    if !x.is_finite() {
+        return (f32::NAN, f32::NAN);
+    }
+    let (k, r) = reduce_pio2_f32(x.abs());
+    let (s, c) = sin_cos_f32_quadrant(k, r);
+    (if x < 0.0 { -s } else { s }, c)
 }
 
 #[cfg(test)]
@@ -314,6 +395,80 @@ mod tests {
         assert!(worst <= 1.0e-7, "worst abs error {worst:e}");
         assert!(super::sin_cos_f32(f32::NAN).0.is_nan());
         assert!(super::sin_cos_f32(f32::INFINITY).1.is_nan());
+    }
+
+    /// |error| of the f32 sin and cos at x against f64 (x is exact in f64).
+    fn f32_error(x: f32) -> f64 {
+        let (s, c) = super::sin_cos_f32(x);
+        let xd = x as f64;
+        (s as f64 - xd.sin()).abs().max((c as f64 - xd.cos()).abs())
+    }
+
+    #[test]
+    fn f32_sin_cos_large_arguments() {
+        // The Payne–Hanek path: every binade from 2^13 to the largest f32, 4096 mantissas
+        // each (a fixed LCG), both signs; the extremes; and the f32 closest to a multiple
+        // of π/2 above 10⁴ (found by `f32_sin_cos_exhaustive_large`), where the reduction
+        // cancels the most.
+        let mut worst = 0.0f64;
+        let mut state = 0x2545_f491_u32;
+        for exponent in 140u32..=254 {
+            for _ in 0..4096 {
+                state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+                let x = f32::from_bits((exponent << 23) | (state >> 9));
+                if x > 1.0e4 {
+                    worst = worst.max(f32_error(x)).max(f32_error(-x));
+                }
+            }
+        }
+        let closest = f32::from_bits(0x6f79_be45); // 7.73e28: |r| = 1.6e-9
+        let worst_seen = f32::from_bits(0x61c5_ab76); // 4.56e20: the exhaustive run's worst
+        for x in [
+            1.0e4f32 + 0.001,
+            3.0e7,
+            f32::MAX,
+            -f32::MAX,
+            closest,
+            worst_seen,
+        ] {
+            worst = worst.max(f32_error(x));
+        }
+        println!("f32 sin_cos, |x| > 1e4: worst abs error {worst:e}");
+        assert!(worst <= 1.0e-7, "worst abs error {worst:e}");
+        for x in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+            let (s, c) = super::sin_cos_f32(x);
+            assert!(s.is_nan() && c.is_nan());
+        }
+    }
+
+    /// Every f32 above 10⁴ (about 10⁹ values; a minute in release): the worst error and
+    /// the argument closest to a multiple of π/2. `cargo test --release -p ppoe --lib
+    /// f32_sin_cos_exhaustive_large -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn f32_sin_cos_exhaustive_large() {
+        let (mut worst, mut worst_at) = (0.0f64, 0.0f32);
+        let (mut closest, mut closest_at) = (f64::INFINITY, 0.0f32);
+        for bits in 1.0e4f32.to_bits() + 1..f32::INFINITY.to_bits() {
+            let x = f32::from_bits(bits);
+            let e = f32_error(x);
+            if e > worst {
+                (worst, worst_at) = (e, x);
+            }
+            let r = super::reduce_pio2_f32(x).1.abs() as f64;
+            if r < closest {
+                (closest, closest_at) = (r, x);
+            }
+        }
+        println!(
+            "worst abs error {worst:e} at {worst_at:e} ({:#x})",
+            worst_at.to_bits()
+        );
+        println!(
+            "smallest |r| {closest:e} at {closest_at:e} ({:#x})",
+            closest_at.to_bits()
+        );
+        assert!(worst <= 1.0e-7);
     }
 
     #[test]
