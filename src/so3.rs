@@ -46,7 +46,10 @@ pub(crate) struct ExpParts<T> {
 }
 
 impl<T: Real> ExpParts<T> {
-    #[inline]
+    // Always inlined: returned through memory, its fields were reloaded with other widths
+    // than they were stored with, and the stalled loads doubled the time of `so3::exp`
+    // in f32.
+    #[inline(always)]
     pub(crate) fn new(w: &Vec3<T>) -> Self {
         let t = w.norm();
         if t < T::SERIES {
