@@ -320,7 +320,11 @@ impl<'a, T: Real> ChainRef<'a, T> {
         })
     }
 
-    /// [`ChainRef::ppoe`] after the length check, W transports at a time.
+    /// [`ChainRef::ppoe`] after the length check, W transports at a time: the joints
+    /// go in groups of W, each group's W congruences and covariances are built as locals
+    /// and transported in the W lanes together; the group at the far end is padded with
+    /// zero covariances. (Queuing them in a buffer until W were pending made the lane
+    /// gathers load what had just been stored field by field: store-forwarding stalls.)
     #[inline(always)]
     fn ppoe_lanes<const W: usize>(
         &self,
@@ -329,15 +333,27 @@ impl<'a, T: Real> ChainRef<'a, T> {
         convention: Convention,
     ) -> UncertainPose<T> {
         let clip_continuous = convention == Convention::Pytransform3d;
+        let n = self.joints.len();
         let zero = Mat6::zeros();
-        let mut sum = TransportSum::<T, W>::new(&zero);
+        let mut acc = [[Pack([T::ZERO; W]); 6]; 6];
+        // Explicit loops over the lanes, no closures: `core::array::from_fn` and closures
+        // were left as calls here, each spilling every register.
         let pose = if convention == Convention::Left {
             // Base frame: Σ_left = Σᵢ Ad(Pᵢ)·covᵢ·Ad(Pᵢ)ᵀ, Pᵢ = D₁…Dᵢ (the reference's sum
             // moved by Ad(Pₙ)); one transport per joint and none at the end.
             let mut p = Transform::identity();
-            for ((j, theta), cov) in self.joints.iter().zip(thetas).zip(covs) {
-                p = p * j.displacement(j.clip(*theta, clip_continuous));
-                sum.add(Congruence::of(&p), cov);
+            for m in 0..n.div_ceil(W) {
+                let mut group = [(Congruence::of(&p), &zero); W];
+                for (k, slot) in group.iter_mut().enumerate() {
+                    let i = m * W + k;
+                    if let (Some(j), Some(t), Some(cov)) =
+                        (self.joints.get(i), thetas.get(i), covs.get(i))
+                    {
+                        p = p.compose(&j.displacement(j.clip(*t, clip_continuous)));
+                        *slot = (Congruence::of(&p), cov);
+                    }
+                }
+                Congruence::add_lower_packed(&group, &mut acc);
             }
             p * self.home
         } else {
@@ -351,9 +367,19 @@ impl<'a, T: Real> ChainRef<'a, T> {
             } else {
                 Transform::identity()
             };
-            for ((j, theta), cov) in self.joints.iter().zip(thetas).zip(covs).rev() {
-                sum.add(Congruence::of_inverse(&g), cov);
-                g = j.displacement(j.clip(*theta, clip_continuous)) * g;
+            for m in 0..n.div_ceil(W) {
+                let mut group = [(Congruence::of_inverse(&g), &zero); W];
+                for (k, slot) in group.iter_mut().enumerate() {
+                    // Joint n − 1 − (m·W + k); none below 0 (padding lanes).
+                    let i = n.wrapping_sub(m * W + k + 1);
+                    if let (Some(j), Some(t), Some(cov)) =
+                        (self.joints.get(i), thetas.get(i), covs.get(i))
+                    {
+                        *slot = (Congruence::of_inverse(&g), cov);
+                        g = j.displacement(j.clip(*t, clip_continuous)).compose(&g);
+                    }
+                }
+                Congruence::add_lower_packed(&group, &mut acc);
             }
             if convention == Convention::Right {
                 g
@@ -361,10 +387,11 @@ impl<'a, T: Real> ChainRef<'a, T> {
                 g * self.home
             }
         };
+        let cov = sum_lanes(&acc);
         let cov = if convention == Convention::Pytransform3d {
-            self.home.transport_covariance(&sum.finish())
+            self.home.transport_covariance(&cov)
         } else {
-            sum.finish()
+            cov
         };
         UncertainPose { pose, cov }
     }
@@ -543,63 +570,18 @@ impl<T: Real, const N: usize> Chain<T, N> {
     }
 }
 
-/// A sum of transported covariances `Σᵢ Ad(Tᵢ)·Σᵢ·Ad(Tᵢ)ᵀ`, lower triangle only, computed W
-/// terms at a time in the lanes of [`Pack`] (the terms are independent; see
-/// [`Congruence::add_lower_packed`]).
-struct TransportSum<'c, T: Real, const W: usize> {
-    lanes: [[Pack<T, W>; 6]; 6],
-    pending: [(Congruence<T>, &'c Mat6<T>); W],
-    /// Zero: the covariance of the lanes left over at the end.
-    zero: &'c Mat6<T>,
-    n: usize,
-}
-
-impl<'c, T: Real, const W: usize> TransportSum<'c, T, W> {
-    /// An empty sum; `zero` must be the zero matrix (it pads the last group of lanes).
-    #[inline(always)]
-    fn new(zero: &'c Mat6<T>) -> Self {
-        Self {
-            lanes: [[Pack([T::ZERO; W]); 6]; 6],
-            pending: [(Congruence::of_inverse(&Transform::identity()), zero); W],
-            zero,
-            n: 0,
+/// The sum over the W lanes of the lower triangle accumulated by
+/// [`Congruence::add_lower_packed`], mirrored: exactly symmetric.
+#[inline(always)]
+fn sum_lanes<T: Real, const W: usize>(lanes: &[[Pack<T, W>; 6]; 6]) -> Mat6<T> {
+    let mut acc = [[T::ZERO; 6]; 6];
+    for (arow, lrow) in acc.iter_mut().zip(lanes) {
+        for (a, l) in arow.iter_mut().zip(lrow) {
+            // Lane 0 plus the others (all 36, only the lower triangle is kept).
+            *a = l.0.iter().skip(1).fold(l.0[0], |s, x| s + *x);
         }
     }
-
-    /// Adds `Ad·cov·Adᵀ` (computed when W terms are pending).
-    #[inline(always)]
-    fn add(&mut self, t: Congruence<T>, cov: &'c Mat6<T>) {
-        if let Some(slot) = self.pending.get_mut(self.n) {
-            *slot = (t, cov);
-        }
-        self.n += 1;
-        if self.n >= W {
-            Congruence::add_lower_packed(&self.pending, &mut self.lanes);
-            self.n = 0;
-        }
-    }
-
-    /// The sum, exactly symmetric. Pending terms are computed with zero covariances in
-    /// the unused lanes (which add exact zeros). Borrows (a by-value `self` was copied
-    /// whole, 0.8 kB, before the last group).
-    #[inline(always)]
-    fn finish(&mut self) -> Mat6<T> {
-        if self.n > 0 {
-            for slot in self.pending.iter_mut().skip(self.n) {
-                slot.1 = self.zero;
-            }
-            Congruence::add_lower_packed(&self.pending, &mut self.lanes);
-            self.n = 0;
-        }
-        let mut acc = [[T::ZERO; 6]; 6];
-        for (arow, lrow) in acc.iter_mut().zip(&self.lanes) {
-            for (a, l) in arow.iter_mut().zip(lrow) {
-                // Lane 0 plus the others (all 36, only the lower triangle is kept).
-                *a = l.0.iter().skip(1).fold(l.0[0], |s, x| s + *x);
-            }
-        }
-        mirror_lower(acc)
-    }
+    mirror_lower(acc)
 }
 
 /// Joint-value noise as a joint covariance: `σ²·S·Sᵀ` for screw axis S (base frame,

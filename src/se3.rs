@@ -382,15 +382,23 @@ fn cross_component<L: Lane>(p: &[L; 3], x: [L; 3], i: usize) -> L {
     }
 }
 
+impl<T: Real> Transform<T> {
+    /// `self · rhs`, always inlined (the PPOE's loops; elsewhere `*`).
+    #[inline(always)]
+    pub(crate) fn compose(&self, rhs: &Self) -> Self {
+        Self {
+            rotation: self.rotation * rhs.rotation,
+            translation: self.rotation * rhs.translation + self.translation,
+        }
+    }
+}
+
 impl<T: Real> core::ops::Mul for Transform<T> {
     type Output = Self;
     /// Composition `self · rhs` (apply `rhs` first).
     #[inline]
     fn mul(self, rhs: Self) -> Self {
-        Self {
-            rotation: self.rotation * rhs.rotation,
-            translation: self.rotation * rhs.translation + self.translation,
-        }
+        self.compose(&rhs)
     }
 }
 
