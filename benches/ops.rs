@@ -56,6 +56,7 @@ fn seed_chain_rounded<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
                 T::lit(l[0]),
                 T::lit(l[1]),
             )
+            .prepared()
         })
         .collect();
     let h: Vec<Vec<f64>> = g["home"]
@@ -68,6 +69,17 @@ fn seed_chain_rounded<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
         std::array::from_fn(|j| T::lit(h[i][j]))
     }));
     (joints, home)
+}
+
+/// The joints without their displacement constants, as `Joint::new` makes them.
+fn without_constants<T: Real>(joints: &[Joint<T>]) -> Vec<Joint<T>> {
+    joints
+        .iter()
+        .map(|j| Joint {
+            constants: None,
+            ..*j
+        })
+        .collect()
 }
 
 /// The same chain and covariances as nalgebra types, for the baseline.
@@ -120,6 +132,7 @@ fn synthetic<T: Real>(n: usize) -> Synthetic<T> {
                 T::lit(-3.0),
                 T::lit(3.0),
             )
+            .prepared() // as ppoe-build's tables and `Joint::from_f64` are
         })
         .collect();
     let home = Transform::from_parts(
@@ -213,6 +226,16 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     let (thetas, covs) = seed_inputs::<T>();
     c.bench_function(&format!("ppoe_seed/ours/{t}"), |b| {
         b.iter(|| chain.ppoe(black_box(&thetas), &covs, Convention::Right))
+    });
+    // Joints as `Joint::new` makes them (hand-written const chains): the displacement
+    // constants derived in every call.
+    let bare = without_constants(&joints);
+    let bare_chain = ChainRef {
+        joints: &bare,
+        home,
+    };
+    c.bench_function(&format!("ppoe_seed/ours_joint_new/{t}"), |b| {
+        b.iter(|| bare_chain.ppoe(black_box(&thetas), &covs, Convention::Right))
     });
     c.bench_function(&format!("ppoe_seed/ours_4th_order/{t}"), |b| {
         b.iter(|| chain.ppoe_fourth_order(black_box(&thetas), &covs, Convention::Right))
@@ -371,6 +394,14 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
     let (j1, j2) = (joints.clone(), joints.clone());
     v.push(op(format!("ppoe_seed/ours/{t}"), move || {
         let chain = ChainRef { joints: &j1, home };
+        chain.ppoe(black_box(&thetas), &covs, Convention::Right)
+    }));
+    let bare = without_constants(&joints);
+    v.push(op(format!("ppoe_seed/ours_joint_new/{t}"), move || {
+        let chain = ChainRef {
+            joints: &bare,
+            home,
+        };
         chain.ppoe(black_box(&thetas), &covs, Convention::Right)
     }));
     v.push(op(format!("ppoe_seed/ours_4th_order/{t}"), move || {

@@ -29,6 +29,9 @@ pub enum Error {
     BufferTooSmall,
     /// Inputs of mismatched lengths (e.g. joint values and joint covariances).
     LengthMismatch,
+    /// A joint's displacement constants ([`crate::chain::JointConstants`]) are not those
+    /// of its screw axis (changed after they were computed, or written by hand).
+    InconsistentConstants,
 }
 
 impl fmt::Display for Error {
@@ -44,6 +47,7 @@ impl fmt::Display for Error {
             Error::TooFewSamples => "too few samples",
             Error::BufferTooSmall => "output buffer too small",
             Error::LengthMismatch => "inputs have mismatched lengths",
+            Error::InconsistentConstants => "joint constants do not match its screw axis",
         })
     }
 }

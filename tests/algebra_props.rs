@@ -2,9 +2,9 @@
 //! both scalars: every property is written once, generically, and run for f32 and f64.
 
 use approx::assert_relative_eq;
-use ppoe::chain::{bending_noise, screw_noise, Chain, Convention, Joint, JointKind};
+use ppoe::chain::{bending_noise, screw_noise, Chain, ChainRef, Convention, Joint, JointKind};
 use ppoe::uncertainty::{self, Order};
-use ppoe::{se3, so3, Mat3, Mat6, Real, Transform, Vec3, Vec6, Vector};
+use ppoe::{se3, so3, Error, Mat3, Mat6, Real, Transform, Vec3, Vec6, Vector};
 use proptest::prelude::*;
 
 /// Tolerance for an operation chain of a few dozen flops on values of order 1.
@@ -360,6 +360,29 @@ fn displacement_matches_exp<T: Real>(u: [f64; 3], norm: f64, v: [f64; 3], theta:
     .map(T::lit);
     let j = Joint::new("j", JointKind::Revolute, s, T::lit(-1e9), T::lit(1e9));
     let got = j.displacement(T::lit(theta));
+    // With the constants computed once (`prepared`, what tables hold): the same bits.
+    let prepared = j.prepared();
+    assert!(prepared.constants.is_some());
+    assert_eq!(
+        prepared.displacement(T::lit(theta)),
+        got,
+        "prepared joint differs"
+    );
+    // And the checked path accepts them, but not constants of another screw.
+    let chain = ChainRef {
+        joints: core::slice::from_ref(&prepared),
+        home: Transform::identity(),
+    };
+    if (norm - 1.0).abs() < 1e-9 {
+        chain.check().unwrap();
+        let mut stale = prepared;
+        stale.screw.0[3] += T::ONE;
+        let bad = ChainRef {
+            joints: core::slice::from_ref(&stale),
+            home: Transform::identity(),
+        };
+        assert_eq!(bad.check(), Err(Error::InconsistentConstants));
+    }
     let s64 = Vector(s.map(|x| x.to_f64()));
     let want = se3::exp(&s64.scale(T::lit(theta).to_f64()));
     let n = s64.rotation().norm();

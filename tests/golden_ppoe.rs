@@ -22,14 +22,24 @@ const F32_BOUND: f64 = 1e-5;
 /// The golden files: one per test chain.
 const FILES: [&str; 8] = PPOE_FILES;
 
-fn run<T: Real>(bound: f64, file: &str) {
+/// `prepared`: the joints with their displacement constants (what `ppoe-build`'s tables
+/// and `Joint::from_f64` hold), else as `Joint::new` makes them (derived per call).
+fn run<T: Real>(bound: f64, file: &str, prepared: bool) {
     let g = golden(&format!("ppoe/{file}.json"));
-    let (joints, home) = chain_from_golden::<T>(&g);
+    let (mut joints, home) = chain_from_golden::<T>(&g);
+    if prepared {
+        joints = joints.into_iter().map(|j| j.prepared()).collect();
+        assert!(joints.iter().any(|j| j.constants.is_some()));
+    }
     let chain = ChainRef {
         joints: &joints,
         home,
     };
-    let ty = core::any::type_name::<T>();
+    let ty = if prepared {
+        format!("{} prepared", core::any::type_name::<T>())
+    } else {
+        core::any::type_name::<T>().to_string()
+    };
     let mut w = [
         Worst::new(&format!("{file} clip {ty}")),
         Worst::new(&format!("{file} pose {ty}")),
@@ -124,14 +134,16 @@ fn psd_to_working_precision<T: Real>(c: &Mat6<T>) -> bool {
 #[test]
 fn ppoe_f64_all_robots() {
     for f in FILES {
-        run::<f64>(F64_BOUND, f);
+        run::<f64>(F64_BOUND, f, false);
+        run::<f64>(F64_BOUND, f, true);
     }
 }
 
 #[test]
 fn ppoe_f32_all_robots() {
     for f in FILES {
-        run::<f32>(F32_BOUND, f);
+        run::<f32>(F32_BOUND, f, false);
+        run::<f32>(F32_BOUND, f, true);
     }
 }
 

@@ -223,13 +223,10 @@ pub fn run<T: Fz>(inp: &CoreInput) {
         let (lo, up): (T, T) = (ji.lower.get(), ji.upper.get());
         chain_valid &= lo.is_nan() || lo == T::neg_infinity() || bounded(lo);
         chain_valid &= up.is_nan() || up == T::infinity() || bounded(up);
-        *j = Joint {
-            name: "",
-            kind,
-            screw,
-            lower: ji.lower.get(),
-            upper: ji.upper.get(),
-        };
+        // Half the joints with their displacement constants (the tables' fast path),
+        // half without (derived per call).
+        let joint = Joint::new("", kind, screw.0, ji.lower.get(), ji.upper.get());
+        *j = if ji.kind % 2 == 0 { joint.prepared() } else { joint };
     }
     let home: Transform<T> = inp.home.get();
     chain_valid &= transform_valid(&home);

@@ -68,7 +68,9 @@ pub fn run(data: &[u8]) {
             assert!(text.contains(&lit), "generated text lacks joint name {lit}:\n{text}");
         }
         assert!(text.contains(&format!("ppoe::chain::Chain<f64, {}>", chain.joints.len())));
-        assert_eq!(text.matches("ppoe::chain::Joint::new(").count(), chain.joints.len());
+        let ctors = text.matches("ppoe::chain::Joint::new(").count()
+            + text.matches("ppoe::chain::Joint::with_constants(").count();
+        assert_eq!(ctors, chain.joints.len());
         let fits = chain
             .joints
             .iter()

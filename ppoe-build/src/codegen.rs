@@ -308,12 +308,32 @@ fn item(
     // `Transform::<T>::from_f64` of the run-time values (negligible elements zeroed), held
     // here in f64 (exactly, for f32).
     let f = |x: f64| float_lit(x, f32_table);
-    let core_screw = |j: &crate::chain::ChainJoint| -> [f64; 6] {
+    // The screw and the displacement constants (`JointConstants::of`, computed in the
+    // table's scalar from its rounded screw, as `Joint::from_f64` does at run time).
+    type Constants = (f64, [[f64; 3]; 6]);
+    let core_joint = |j: &crate::chain::ChainJoint| -> ([f64; 6], Option<Constants>) {
         let raw = Joint::new("", j.kind, j.screw, j.lower, j.upper);
+        fn parts<T: ppoe::Real>(j: &Joint<T>) -> ([f64; 6], Option<Constants>) {
+            let k = j.constants.map(|k| {
+                let a = |v: [T; 3]| v.map(<T as ppoe::Real>::to_f64);
+                (
+                    <T as ppoe::Real>::to_f64(k.scale),
+                    [
+                        a(k.axis),
+                        a(k.axis_sq),
+                        a(k.axis_prod),
+                        a(k.v),
+                        a(k.axis_cross_v),
+                        a(k.axial_v),
+                    ],
+                )
+            });
+            (j.screw.0.map(<T as ppoe::Real>::to_f64), k)
+        }
         if f32_table {
-            Joint::<f32>::from_f64(&raw).screw.0.map(f64::from)
+            parts(&Joint::<f32>::from_f64(&raw))
         } else {
-            Joint::<f64>::from_f64(&raw).screw.0
+            parts(&Joint::<f64>::from_f64(&raw))
         }
     };
     let raw_home = Transform::from_matrix4(&chain.home);
@@ -325,21 +345,32 @@ fn item(
         Transform::<f64>::from_f64(&raw_home).to_matrix4()
     };
     let mut joints = Vec::with_capacity(n);
+    let lits = |v: &[f64]| -> Result<Node> {
+        Ok(Node::array(
+            v.iter().map(|&x| f(x)).collect::<Result<Vec<_>>>()?,
+        ))
+    };
     for j in &chain.joints {
-        let screw = core_screw(j)
-            .iter()
-            .map(|&x| f(x))
-            .collect::<Result<Vec<_>>>()?;
-        joints.push(Node::call(
-            "ppoe::chain::Joint::new",
-            vec![
-                Node::atom(str_lit(&j.name), true),
-                Node::atom(kind_path(j.kind), false),
-                Node::array(screw),
-                f(j.lower)?,
-                f(j.upper)?,
-            ],
-        ));
+        let (screw, constants) = core_joint(j);
+        let mut args = vec![
+            Node::atom(str_lit(&j.name), true),
+            Node::atom(kind_path(j.kind), false),
+            lits(&screw)?,
+            f(j.lower)?,
+            f(j.upper)?,
+        ];
+        let ctor = match constants {
+            Some((scale, arrays)) => {
+                let mut k = vec![f(scale)?];
+                for a in &arrays {
+                    k.push(lits(a)?);
+                }
+                args.push(Node::call("ppoe::chain::JointConstants::new", k));
+                "ppoe::chain::Joint::with_constants"
+            }
+            None => "ppoe::chain::Joint::new",
+        };
+        joints.push(Node::call(ctor, args));
     }
     let mut rows = Vec::with_capacity(3);
     for row in &home[..3] {

@@ -64,12 +64,13 @@
 //!     "linkmount",
 //!     "tcp",
 //!     [
-//!         ppoe::chain::Joint::new(
+//!         ppoe::chain::Joint::with_constants(
 //!             "joint1",
 //!             ppoe::chain::JointKind::Revolute,
 //!             [0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
 //!             -1.0,
 //!             1.0,
+//!             ppoe::chain::JointConstants::new(1.0, [0.0, 0.0, 1.0], /* … */),
 //!         ),
 //!         // …
 //!     ],
@@ -88,6 +89,11 @@
 //!   entries like −1.9·10⁻²³; kept in f32, their products are subnormal, and x86 cores compute
 //!   those on a slow path (the seed robot's f32 forward kinematics took 1.5× as long).
 //!   Unbounded limits are `f64::INFINITY` / `f64::NEG_INFINITY`.
+//! * Joints that rotate carry their displacement constants
+//!   ([`ppoe::chain::JointConstants::of`] of the converted screw, in the table's scalar, as
+//!   `Joint::from_f64` computes them at run time): the device's forward kinematics then
+//!   needs a sin/cos and 18 multiplications per joint, nothing else. Prismatic joints use
+//!   `Joint::new`.
 //! * The output is deterministic (it depends on the URDF's bytes and the options only; the
 //!   doc comment names the file, not its directory) and already formatted as rustfmt
 //!   formats it.

@@ -254,6 +254,21 @@ fn every_f64_value_is_written_in_round_trip_form() {
         expected.extend_from_slice(&j.screw);
         expected.push(j.lower);
         expected.push(j.upper);
+        // The displacement constants, as `Joint::from_f64` computes them at run time.
+        let raw = ppoe::chain::Joint::new("", j.kind, j.screw, j.lower, j.upper);
+        if let Some(k) = ppoe::chain::Joint::<f64>::from_f64(&raw).constants {
+            expected.push(k.scale);
+            for a in [
+                k.axis,
+                k.axis_sq,
+                k.axis_prod,
+                k.v,
+                k.axis_cross_v,
+                k.axial_v,
+            ] {
+                expected.extend_from_slice(&a);
+            }
+        }
     }
     for row in &chain.home[..3] {
         expected.extend_from_slice(&row[..3]);
