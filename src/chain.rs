@@ -46,7 +46,7 @@ pub struct Joint<T> {
 
 /// The constants of a joint's displacement `Exp(S·θ)` derived from its screw axis
 /// S = (ω, v), rotation first, base frame: with ŵ = ω/‖ω‖ and v̂ = v/‖ω‖, Rodrigues'
-/// rotation needs ŵ and the entries of [ŵ]×², and the screw translation
+/// rotation needs ŵ and the entries of `[ŵ]×²`, and the screw translation
 /// `sin t·v̂ + (1 − cos t)·ŵ×v̂ + (t − sin t)·(ŵ·v̂)·ŵ` (t = θ·‖ω‖) needs v̂, ŵ×v̂ and
 /// (ŵ·v̂)·ŵ. Computed once ([`JointConstants::of`]), they leave a sin/cos and 18
 /// multiplications per joint and call. Only for joints that rotate (ω ≠ 0).
@@ -56,9 +56,9 @@ pub struct JointConstants<T> {
     pub scale: T,
     /// ŵ = ω/‖ω‖.
     pub axis: [T; 3],
-    /// (ŵy² + ŵz², ŵx² + ŵz², ŵx² + ŵy²): the diagonal of −[ŵ]×².
+    /// (ŵy² + ŵz², ŵx² + ŵz², ŵx² + ŵy²): the diagonal of `−[ŵ]×²`.
     pub axis_sq: [T; 3],
-    /// (ŵx·ŵy, ŵx·ŵz, ŵy·ŵz): the off-diagonal entries of [ŵ]×².
+    /// (ŵx·ŵy, ŵx·ŵz, ŵy·ŵz): the off-diagonal entries of `[ŵ]×²`.
     pub axis_prod: [T; 3],
     /// v̂ = v/‖ω‖.
     pub v: [T; 3],
