@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 """Floating-point operation count of ppoe's PPOE (ChainRef::ppoe, Convention::Right).
 
-A hand count of the source as written (src/chain.rs `ppoe_lanes`, `Joint::displacement`,
-`TransportSum`; src/se3.rs `Transform::mul`, `Congruence::of_inverse`, `transport_lower`,
-`sandwich_add`, `cross_component`; src/so3.rs `i_plus_aw_bw2`), counting multiplies and
-adds/subtracts separately (negations, transposes, clipping compares, copies and the lane
-packing: 0), and division, square root and sin_cos apart. Update the table below when those
-functions change.
+A hand count of the source as written (src/chain.rs `ppoe_lanes`,
+`JointConstants::displacement`, `sum_lanes`; src/se3.rs `Transform::compose`,
+`Congruence::of_inverse`, `transport_lower`, `sandwich_add`, `cross_component`), for joints
+with their displacement constants (ppoe-build's tables, `Joint::from_f64`,
+`Joint::prepared`), counting multiplies and adds/subtracts separately (negations,
+transposes, clipping compares, copies and the lane packing: 0), and division, square root
+and sin_cos apart. Update the table below when those functions change.
 
 Usage: python3 scripts/flops.py [N] [--ghz G] [--fma-per-cycle K] [--lanes W] -> JSON
 """
@@ -23,16 +24,14 @@ SANDWICH_FULL = (27 + 27, 18 + 18 + 9)
 SANDWICH_SYM = (27 + 18, 18 + 12 + 6)
 
 PIECES = {
-    # Joint::displacement, unit-axis path (|w|^2 within sqrt(eps) of 1, every URDF joint):
-    # |w|^2 (3 mul, 2 add), d = |w|^2 - 1 (1 add), h = d/2 (1 mul), |w| = 1 + h and
-    # 1/|w| = 1 - h (2 add), no division or square root; unit axis x and v/|w|
-    # (6 mul), t = theta*|w| (1 mul), sin_cos, 1 - cos (1 add); i_plus_aw_bw2: the 6
-    # products w_i w_j, 3 diagonal entries (2 add, 1 mul), 6 off-diagonal entries from 6
-    # distinct products and 1 add each; translation s*v + (1-c)*(x cross v) + (t-s)(x.v)x:
-    # 3 + (6 mul, 3 sub) + 3 + (3 mul, 2 add) + (1 sub, 1 mul) + 3 mul, 2 vector adds.
+    # JointConstants::displacement: t = theta*|w| (1 mul), sin_cos, 1 - cos (1 add); the
+    # rotation from the constant axis products: 3 diagonal entries 1 - (1-c)*d_i (1 mul,
+    # 1 add), 6 off-diagonal entries (1-c)*p_ij +- s*x_k from 3 + 3 products (1 add
+    # each); t - s (1 add); the translation s*v + (1-c)*(x cross v) + (t-s)*(x.v)x from
+    # constant vectors (9 mul, 6 add).
     "exp": {
-        "mul": 3 + 1 + 6 + 1 + (6 + 3 + 3 + 3) + (3 + 6 + 3 + 3 + 1 + 3),
-        "add": 2 + 1 + 2 + 1 + (6 + 6) + (3 + 2 + 1 + 6),
+        "mul": 1 + (3 + 3 + 3) + 9,
+        "add": 1 + (3 + 6) + 1 + 6,
         "div": 0,
         "sqrt": 0,
         "sin_cos": 1,

@@ -48,8 +48,9 @@ pub struct Joint<T> {
 /// S = (ω, v), rotation first, base frame: with ŵ = ω/‖ω‖ and v̂ = v/‖ω‖, Rodrigues'
 /// rotation needs ŵ and the entries of `[ŵ]×²`, and the screw translation
 /// `sin t·v̂ + (1 − cos t)·ŵ×v̂ + (t − sin t)·(ŵ·v̂)·ŵ` (t = θ·‖ω‖) needs v̂, ŵ×v̂ and
-/// (ŵ·v̂)·ŵ. Computed once ([`JointConstants::of`]), they leave a sin/cos and 18
-/// multiplications per joint and call. Only for joints that rotate (ω ≠ 0).
+/// (ŵ·v̂)·ŵ. Computed once ([`JointConstants::of`]), they leave a sin/cos, 19
+/// multiplications and 17 additions per joint and call. Only for joints that rotate
+/// (ω ≠ 0).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointConstants<T> {
     /// ‖ω‖, the angle per unit of joint value (1 for URDF joints).
