@@ -443,14 +443,25 @@ def render(d):
     if pu64 and s64:
         fk64 = c("fk_seed/ours/f64")
         line = ("- pytransform3d: its example takes %s µs per call in this run (the issue measured 2.29 ms"
-                " on its machine; the ratio moves with how fast numpy's small-array overhead is on the"
-                " machine at hand). Ours is %.0f× faster" % (us(pu64 * 1e3), pu64 * 1e3 / s64))
+                " on its machine, which set the 7,000×). Ours is %.0f× faster" % (us(pu64 * 1e3), pu64 * 1e3 / s64))
         line += " (target 7,000×: %s)." % ("met" if pu64 * 1e3 / s64 >= 7000 else "missed by %.0f%%" % (100 * (1 - pu64 * 1e3 / s64 / 7000)))
         if pu64 * 1e3 / s64 < 7000:
-            line += (" 7,000× would need %.3f µs per PPOE here" % (pu64 / 7000))
-            if fk64:
+            need = pu64 * 1e3 / 7000
+            line += " 7,000× would need %s µs per PPOE here" % us(need)
+            if fk64 and fk64 >= need:
                 line += ("; the rigid forward kinematics alone (six sin/cos and the serial product)"
                          " takes %s µs, so even a free covariance would reach only %.0f×." % (us(fk64), pu64 * 1e3 / fk64))
+            elif fk64:
+                line += ("; the rigid forward kinematics alone takes %s µs of our %s µs, so the six"
+                         " covariance transports would have to take %s µs instead of %s µs"
+                         % (us(fk64), us(s64), us(need - fk64), us(s64 - fk64)))
+                if fl and fl.get("ghz"):
+                    # Their multiplies in 2-lane SIMD (SSE2) at fma_per_cycle per cycle.
+                    tm = 6 * fl["pieces"]["transport"]["mul"]
+                    simd_ns = tm / fl.get("lanes", 2) / fl["fma_per_cycle"] / fl["ghz"]
+                    line += (", while their %d multiplies need %s µs even two to a register at"
+                             " %d per cycle" % (tm, us(simd_ns), fl["fma_per_cycle"]))
+                line += "."
             else:
                 line += "."
         p(line)
@@ -493,12 +504,16 @@ def render(d):
     if fr32 and fo32:
         p("- Subnormals: the seed URDF's rpy angles leave entries of −1.9·10⁻²³ in two screw axes"
           " and the home pose. Rounded to f32 they are normal, but their products are subnormal,"
-          " which x86 cores compute on a slow path. With those entries (`fk_seed/rounded_only`)"
-          " the f32 forward kinematics takes %s µs, %.2f× the %s µs of the chain as ppoe-build"
-          " converts it (`Joint::from_f64` / `Transform::from_f64` zero the elements below ε²·max"
-          " of their vector; no result moves by more than ε² relative). f64 has no such effect"
-          " (%s vs %s µs)." % (us(fr32), fr32 / fo32, us(fo32), us(c("fk_seed/rounded_only/f64")),
-                               us(c("fk_seed/ours/f64"))))
+          " which x86 cores compute on a slow path. With those entries (`fk_seed/rounded_only`,"
+          " displacement constants computed the same way) the f32 forward kinematics takes %s µs,"
+          " %.2f× the %s µs of the chain as ppoe-build converts it (`Joint::from_f64` /"
+          " `Transform::from_f64` zero the elements below ε²·max of their vector; no result moves"
+          " by more than ε² relative). f64: %s vs %s µs.%s" % (
+              us(fr32), fr32 / fo32, us(fo32), us(c("fk_seed/rounded_only/f64")),
+              us(c("fk_seed/ours/f64")),
+              "" if fr32 / fo32 > 1.1 else
+              " With the products of the axis computed once per joint (`JointConstants`) the"
+              " per-call arithmetic no longer meets them; the zeroing stays as a guard."))
     if s32 and s64:
         e64, e32 = c("so3_exp/f64"), c("so3_exp/f32")
         line = "- Host f32/f64 PPOE time: %.2f." % (s32 / s64)
@@ -520,11 +535,16 @@ def render(d):
             line += (" On the synthetic chains f32/f64 is %.2f (N = 8) and %.2f (N = 32)."
                      % (c8_32 / c8_64, c32_32 / c32_64))
         if s32 > s64:
+            fk32 = c("fk_seed/ours/f32")
+            fk64 = c("fk_seed/ours/f64")
+            if fk32 and fk64:
+                line += (" The rigid part alone: f32 %s µs, f64 %s µs; the rest (the transports):"
+                         " f32 %s µs, f64 %s µs." % (us(fk32), us(fk64), us(s32 - fk32), us(s64 - fk64)))
             line += (" Both scalars run the same schedule (two transports in the lanes of one"
-                     " SSE register, the rigid part scalar); f32 gains nothing from narrower"
-                     " values there, and gathering two f32 covariance entries into a register"
-                     " takes two loads and a shuffle where f64 loads the second straight into"
-                     " the upper half.")
+                     " SSE register, the rigid part scalar), so f32 gains nothing from narrower"
+                     " values; and in the disassembly, gathering two f32 covariance entries into"
+                     " a register takes two loads and a shuffle where f64 loads the second"
+                     " straight into the upper half.")
         p(line)
         line = None
         if line:

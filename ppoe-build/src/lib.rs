@@ -87,7 +87,8 @@
 //!   robots do not have. f32 tables hold the same conversion to f32: each value rounded with
 //!   `as f32`, then elements below ε₃₂²·max zeroed. URDF rpy angles such as 1.5708 leave
 //!   entries like −1.9·10⁻²³; kept in f32, their products are subnormal, and x86 cores compute
-//!   those on a slow path (the seed robot's f32 forward kinematics took 1.5× as long).
+//!   those on a slow path (`fk_seed/rounded_only` in BENCHMARKS.md times the chain without
+//!   this step).
 //!   Unbounded limits are `f64::INFINITY` / `f64::NEG_INFINITY`.
 //! * Joints that rotate carry their displacement constants
 //!   ([`ppoe::chain::JointConstants::of`] of the converted screw, in the table's scalar, as
