@@ -220,18 +220,15 @@ impl<T: Real> Joint<T> {
         constants: JointConstants<T>,
     ) -> Self {
         Self {
-            name,
-            kind,
-            screw: crate::linalg::Vector(screw),
-            lower,
-            upper,
             constants: Some(constants),
+            ..Self::new(name, kind, screw, lower, upper)
         }
     }
 
     /// The joint with its displacement constants computed ([`JointConstants::of`] of the
     /// screw; `None` for a joint that does not rotate): the fast path of
     /// [`Joint::displacement`] for chains built at run time.
+    ///
     /// Non-finite constants (from a screw so large or small that v/‖ω‖ overflows) are not
     /// kept: such a joint stays on the per-call path, whose result is the same.
     #[must_use]
