@@ -46,9 +46,8 @@ pub(crate) struct ExpParts<T> {
 }
 
 impl<T: Real> ExpParts<T> {
-    // Always inlined: returned through memory, its fields were reloaded with other widths
-    // than they were stored with, and the stalled loads doubled the time of `so3::exp`
-    // in f32.
+    // Always inlined: left as a call (as it was once sin/cos was inlined into it),
+    // `se3::exp` took 26 ns instead of 17 on x86-64, in f32 and f64.
     #[inline(always)]
     pub(crate) fn new(w: &Vec3<T>) -> Self {
         let t = w.norm();
