@@ -76,8 +76,9 @@ pub trait Real:
     /// SIMD lane: 2 where the target has 128-bit vectors (SSE2, NEON, wasm simd128), else 1
     /// (Cortex-M: scalar FPU). Only the instruction schedule depends on it; each
     /// transport's operations are the same. f32 uses 2 lanes too, not the 4 a register
-    /// holds: gathering 48 values from four transports into lanes costs more than the
-    /// halved arithmetic saves (seed PPOE on x86-64: 0.33 µs with 4 lanes, 0.28 µs with 2).
+    /// holds: 4 lanes were slower on x86-64, on the seed robot and on the synthetic chains,
+    /// each time they were tried (gathering four transports' values into lanes, and four
+    /// joints' work in flight, cost more than the halved arithmetic saves).
     const TRANSPORT_LANES: usize;
 
     /// Converts an `f64` constant to this type (rounding to nearest for `f32`).
