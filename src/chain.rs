@@ -39,7 +39,7 @@ pub struct Joint<T> {
     /// The constants of [`Joint::displacement`] derived from `screw`, if computed:
     /// [`Joint::prepared`], [`Joint::from_f64`] and `ppoe-build`'s tables have them;
     /// [`Joint::new`] (a `const fn`, which cannot compute them) has `None`, and then each
-    /// call derives them again (≈ 30 % more time for the rigid kinematics). Recompute
+    /// call derives them again (BENCHMARKS.md: `ppoe_seed/ours_joint_new`). Recompute
     /// them after changing `screw`; [`ChainRef::check`] verifies them.
     pub constants: Option<JointConstants<T>>,
 }
