@@ -1,5 +1,5 @@
-//! Generated source: deterministic, documented, and exactly as rustfmt formats it (checked
-//! with `rustfmt --check` when rustfmt is installed; skipped otherwise).
+//! Generated source: deterministic, documented, and accepted by `rustfmt --check` as it is
+//! (the items are `#[rustfmt::skip]`; checked when rustfmt is installed, skipped otherwise).
 
 use ppoe_build::codegen::{self, Source};
 use ppoe_build::{ChainJoint, Config, ErrorKind, JointKind, RobotChain, Scalar};
