@@ -159,6 +159,7 @@
 
 pub mod chain;
 pub mod codegen;
+mod dtd;
 pub mod error;
 pub mod literal;
 mod math;

@@ -37,6 +37,11 @@
 //! Finite but huge numbers (`1e300`) are accepted; if the products along a chain overflow,
 //! extracting that chain is a [`ErrorKind::NonFinite`] error naming the joint.
 //!
+//! A DTD is allowed, but its internal entities may expand the document by at most 1 MiB in
+//! total (every reference charged its entity's fully expanded size, checked before the XML
+//! parser runs): a small URDF whose entities would expand to gigabytes is an
+//! [`ErrorKind::Xml`] error, not an exhausted memory.
+//!
 //! Nothing here recurses: the tree checks walk the parent links with explicit loops, so a
 //! serial chain of 10⁴ or more links (or a cycle through them) is no problem.
 
@@ -143,6 +148,7 @@ impl Urdf {
     /// Parses URDF text. Never panics; every problem is an [`Error`].
     pub fn parse(text: &str) -> Result<Self> {
         let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        crate::dtd::check(text, |offset| end_position(&text[..offset]))?;
         let options = roxmltree::ParsingOptions {
             allow_dtd: true,
             ..roxmltree::ParsingOptions::default()
