@@ -319,18 +319,31 @@ impl Config {
     }
 
     /// Generates the source and writes it to `path` (rewriting the file only if its content
-    /// changed).
+    /// changed; through a temporary file and a rename, so the file is never partial).
     pub fn write_to(&self, path: impl AsRef<Path>) -> Result<()> {
         let path = path.as_ref();
         let source = self.generate()?;
         if std::fs::read(path).ok().as_deref() == Some(source.as_bytes()) {
             return Ok(());
         }
-        std::fs::write(path, source).map_err(|e| {
+        write_atomically(path, source.as_bytes()).map_err(|e| {
             Error::new(
                 ErrorKind::Io,
                 format!("cannot write {}: {e}", path.display()),
             )
         })
     }
+}
+
+/// Writes `bytes` to a temporary file next to `path`, then renames it over `path`, so that
+/// a reader (a concurrent build, an interrupted one) never sees a partial table.
+fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(format!(".tmp{}", std::process::id()));
+    let tmp = PathBuf::from(tmp);
+    std::fs::write(&tmp, bytes)
+        .and_then(|()| std::fs::rename(&tmp, path))
+        .inspect_err(|_| {
+            let _ = std::fs::remove_file(&tmp);
+        })
 }

@@ -113,6 +113,8 @@ fn synthetic(rng: &mut Rng, n: usize, name_len: usize) -> RobotChain {
                 screw,
                 lower: rng.limit(true),
                 upper: rng.limit(false),
+                // Not part of a table.
+                home_frame: [[0.0; 4]; 4],
             }
         })
         .collect();
