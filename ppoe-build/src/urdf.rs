@@ -382,73 +382,12 @@ impl<'input> Parser<'_, 'input> {
         let position = self.node_pos(node);
         let name = self.required(node, "name", "<joint>")?;
         let what = format!("joint '{name}'");
-        let type_str = self.required(node, "type", &what)?;
-        let joint_type = match type_str.as_str() {
-            "revolute" => JointType::Revolute,
-            "continuous" => JointType::Continuous,
-            "prismatic" => JointType::Prismatic,
-            "fixed" => JointType::Fixed,
-            "planar" => JointType::Planar,
-            "floating" => JointType::Floating,
-            other => {
-                let attr = attribute(node, "type");
-                return Err(Error::new(
-                    ErrorKind::UnsupportedJointType,
-                    format!(
-                        "{what}: type {} is not a URDF joint type (revolute, continuous, \
-                         prismatic, fixed, planar, floating)",
-                        shown(other)
-                    ),
-                )
-                .at(attr.and_then(|a| self.value_pos(&a)).or(position)));
-            }
-        };
-
+        let joint_type = self.joint_type(node, &what)?;
         let (parent, _) = self.link_ref(node, "parent", &what, links)?;
         let (child, child_position) = self.link_ref(node, "child", &what, links)?;
-
-        let (xyz, rpy) = match first_child(node, "origin") {
-            Some(origin) => (
-                self.vec3(origin, "xyz", &what)?.unwrap_or([0.0; 3]),
-                self.vec3(origin, "rpy", &what)?,
-            ),
-            None => ([0.0; 3], None),
-        };
-        // As pytransform3d: the Euler product is evaluated whenever `rpy` is given (even
-        // "0 0 0", which only affects the sign of zeros), the identity otherwise.
-        let rotation = match rpy {
-            Some(rpy) => math::rotation_from_rpy(rpy),
-            None => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-        };
-        let child2parent = math::transform_from(&rotation, xyz);
-
-        // pytransform3d reads the axis of moving joints only; a fixed joint's axis is ignored
-        // (it may even be zero).
-        let mut axis = [1.0, 0.0, 0.0];
-        let mut axis_position = None;
-        if joint_type != JointType::Fixed {
-            if let Some(axis_node) = first_child(node, "axis") {
-                if let Some(v) = self.vec3(axis_node, "xyz", &what)? {
-                    axis = math::normalized(v);
-                    axis_position = attribute(axis_node, "xyz").and_then(|a| self.value_pos(&a));
-                }
-            }
-        }
-
-        let (mut lower, mut upper) = (f64::NEG_INFINITY, f64::INFINITY);
-        let mut limit_position = None;
-        if joint_type == JointType::Fixed {
-            (lower, upper) = (0.0, 0.0);
-        } else if let Some(limit) = first_child(node, "limit") {
-            limit_position = self.node_pos(limit);
-            if let Some(v) = self.limit(limit, "lower", &what)? {
-                lower = v;
-            }
-            if let Some(v) = self.limit(limit, "upper", &what)? {
-                upper = v;
-            }
-        }
-
+        let child2parent = self.origin(node, &what)?;
+        let (axis, axis_position) = self.axis(node, joint_type, &what)?;
+        let (lower, upper, limit_position) = self.limits(node, joint_type, &what)?;
         let mimic_node = first_child(node, "mimic");
         Ok(Joint {
             name,
@@ -466,6 +405,92 @@ impl<'input> Parser<'_, 'input> {
             mimic_position: mimic_node.and_then(|m| self.node_pos(m)),
             limit_position,
         })
+    }
+
+    /// The `type` attribute: one of URDF's six joint types.
+    fn joint_type(&self, node: Node<'_, 'input>, what: &str) -> Result<JointType> {
+        let type_str = self.required(node, "type", what)?;
+        Ok(match type_str.as_str() {
+            "revolute" => JointType::Revolute,
+            "continuous" => JointType::Continuous,
+            "prismatic" => JointType::Prismatic,
+            "fixed" => JointType::Fixed,
+            "planar" => JointType::Planar,
+            "floating" => JointType::Floating,
+            other => {
+                let attr = attribute(node, "type");
+                return Err(Error::new(
+                    ErrorKind::UnsupportedJointType,
+                    format!(
+                        "{what}: type {} is not a URDF joint type (revolute, continuous, \
+                         prismatic, fixed, planar, floating)",
+                        shown(other)
+                    ),
+                )
+                .at(attr
+                    .and_then(|a| self.value_pos(&a))
+                    .or(self.node_pos(node))));
+            }
+        })
+    }
+
+    /// The child-to-parent transform of `<origin xyz rpy>` (identity where absent).
+    fn origin(&self, node: Node<'_, 'input>, what: &str) -> Result<math::Mat4> {
+        let (xyz, rpy) = match first_child(node, "origin") {
+            Some(origin) => (
+                self.vec3(origin, "xyz", what)?.unwrap_or([0.0; 3]),
+                self.vec3(origin, "rpy", what)?,
+            ),
+            None => ([0.0; 3], None),
+        };
+        // As pytransform3d: the Euler product is evaluated whenever `rpy` is given (even
+        // "0 0 0", which only affects the sign of zeros), the identity otherwise.
+        let rotation = match rpy {
+            Some(rpy) => math::rotation_from_rpy(rpy),
+            None => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        };
+        Ok(math::transform_from(&rotation, xyz))
+    }
+
+    /// The normalised `<axis xyz>` ((1, 0, 0) where absent) and where its value starts.
+    fn axis(
+        &self,
+        node: Node<'_, 'input>,
+        joint_type: JointType,
+        what: &str,
+    ) -> Result<([f64; 3], Option<Position>)> {
+        // pytransform3d reads the axis of moving joints only; a fixed joint's axis is
+        // ignored (it may even be zero).
+        if joint_type != JointType::Fixed {
+            if let Some(axis_node) = first_child(node, "axis") {
+                if let Some(v) = self.vec3(axis_node, "xyz", what)? {
+                    let at = attribute(axis_node, "xyz").and_then(|a| self.value_pos(&a));
+                    return Ok((math::normalized(v), at));
+                }
+            }
+        }
+        Ok(([1.0, 0.0, 0.0], None))
+    }
+
+    /// `<limit lower upper>` (−∞/+∞ where absent, (0, 0) for fixed joints) and where the
+    /// element starts.
+    fn limits(
+        &self,
+        node: Node<'_, 'input>,
+        joint_type: JointType,
+        what: &str,
+    ) -> Result<(f64, f64, Option<Position>)> {
+        if joint_type == JointType::Fixed {
+            return Ok((0.0, 0.0, None));
+        }
+        let Some(limit) = first_child(node, "limit") else {
+            return Ok((f64::NEG_INFINITY, f64::INFINITY, None));
+        };
+        let lower = self
+            .limit(limit, "lower", what)?
+            .unwrap_or(f64::NEG_INFINITY);
+        let upper = self.limit(limit, "upper", what)?.unwrap_or(f64::INFINITY);
+        Ok((lower, upper, self.node_pos(limit)))
     }
 
     /// `<parent link>` / `<child link>`: present, non-empty, naming an existing link.
