@@ -285,31 +285,7 @@ impl Urdf {
                 )
                 .at(joint.position));
             };
-            if !joint.joint_type.is_moving() {
-                return Err(Error::new(
-                    ErrorKind::NotMovable,
-                    format!(
-                        "joint '{name}' is {}, it cannot be listed as a moving joint",
-                        joint.joint_type.as_str()
-                    ),
-                )
-                .at(joint.position));
-            }
-            if let Some(&prev) = out.last() {
-                if i < prev {
-                    return Err(Error::new(
-                        ErrorKind::NotOnPath,
-                        format!(
-                            "joint '{name}' is listed after '{}' but comes before it on the \
-                             path from '{base}' to '{tip}': list the joints in path order, \
-                             base to tip (the path: {})",
-                            path[prev].name,
-                            names(path)
-                        ),
-                    )
-                    .at(joint.position));
-                }
-            }
+            check_listed(joint, i, out.last().copied(), path, base, tip)?;
             out.push(i);
         }
         Ok(out)
@@ -427,6 +403,43 @@ fn chain_joint(j: &UrdfJoint, l: Mat4, path: &[&UrdfJoint]) -> Result<ChainJoint
         upper: j.upper,
         home_frame: l,
     })
+}
+
+/// A listed joint `joint`, at index `i` of the path, must be moving and come after the
+/// previous listed one (at `prev`).
+fn check_listed(
+    joint: &UrdfJoint,
+    i: usize,
+    prev: Option<usize>,
+    path: &[&UrdfJoint],
+    base: &str,
+    tip: &str,
+) -> Result<()> {
+    let name = &joint.name;
+    if !joint.joint_type.is_moving() {
+        return Err(Error::new(
+            ErrorKind::NotMovable,
+            format!(
+                "joint '{name}' is {}, it cannot be listed as a moving joint",
+                joint.joint_type.as_str()
+            ),
+        )
+        .at(joint.position));
+    }
+    match prev {
+        Some(prev) if i < prev => Err(Error::new(
+            ErrorKind::NotOnPath,
+            format!(
+                "joint '{name}' is listed after '{}' but comes before it on the path from \
+                 '{base}' to '{tip}': list the joints in path order, base to tip (the path: \
+                 {})",
+                path[prev].name,
+                names(path)
+            ),
+        )
+        .at(joint.position)),
+        _ => Ok(()),
+    }
 }
 
 /// Paths with at most this many joints get pytransform3d's evaluation order, bit for bit

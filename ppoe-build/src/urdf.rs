@@ -256,6 +256,11 @@ impl<'input> LineIndex<'input> {
     }
 }
 
+/// `" at line:column"` for a message, or nothing.
+fn at(position: Option<Position>) -> String {
+    position.map_or(String::new(), |p| format!(" at {p}"))
+}
+
 /// Shortens an attribute value for a message.
 fn shown(value: &str) -> String {
     const MAX: usize = 60;
@@ -323,7 +328,18 @@ impl<'input> Parser<'_, 'input> {
             .at(self.node_pos(root)));
         }
         let name = self.required(root, "name", "<robot>")?;
+        let (links, link_index) = self.links(root)?;
+        let joints = self.joints(root, &link_index)?;
+        check_tree(&links, &joints)?;
+        Ok(Urdf {
+            name,
+            links,
+            joints,
+        })
+    }
 
+    /// The `<link>` children of the root, in document order, and the index of each name.
+    fn links(&self, root: Node<'_, 'input>) -> Result<(Vec<Link>, HashMap<String, usize>)> {
         let mut links: Vec<Link> = Vec::new();
         let mut link_index: HashMap<String, usize> = HashMap::new();
         for node in root
@@ -333,12 +349,12 @@ impl<'input> Parser<'_, 'input> {
             let link_name = self.required(node, "name", "<link>")?;
             let position = self.node_pos(node);
             if let Some(&first) = link_index.get(&link_name) {
-                let at = links[first]
-                    .position
-                    .map_or(String::new(), |p| format!(" at {p}"));
                 return Err(Error::new(
                     ErrorKind::DuplicateName,
-                    format!("link '{link_name}' is defined twice (first{at})"),
+                    format!(
+                        "link '{link_name}' is defined twice (first{})",
+                        at(links[first].position)
+                    ),
                 )
                 .at(position));
             }
@@ -348,34 +364,37 @@ impl<'input> Parser<'_, 'input> {
                 position,
             });
         }
+        Ok((links, link_index))
+    }
 
+    /// The `<joint>` children of the root, in document order.
+    fn joints(
+        &self,
+        root: Node<'_, 'input>,
+        link_index: &HashMap<String, usize>,
+    ) -> Result<Vec<Joint>> {
         let mut joints: Vec<Joint> = Vec::new();
         let mut joint_index: HashMap<String, usize> = HashMap::new();
         for node in root
             .children()
             .filter(|c| c.is_element() && c.tag_name().name() == "joint")
         {
-            let joint = self.joint(node, &link_index)?;
+            let joint = self.joint(node, link_index)?;
             if let Some(&first) = joint_index.get(&joint.name) {
-                let at = joints[first]
-                    .position
-                    .map_or(String::new(), |p| format!(" at {p}"));
                 return Err(Error::new(
                     ErrorKind::DuplicateName,
-                    format!("joint '{}' is defined twice (first{at})", joint.name),
+                    format!(
+                        "joint '{}' is defined twice (first{})",
+                        joint.name,
+                        at(joints[first].position)
+                    ),
                 )
                 .at(joint.position));
             }
             joint_index.insert(joint.name.clone(), joints.len());
             joints.push(joint);
         }
-
-        check_tree(&links, &joints)?;
-        Ok(Urdf {
-            name,
-            links,
-            joints,
-        })
+        Ok(joints)
     }
 
     fn joint(&self, node: Node<'_, 'input>, links: &HashMap<String, usize>) -> Result<Joint> {
@@ -632,30 +651,7 @@ fn check_tree(links: &[Link], joints: &[Joint]) -> Result<()> {
         loop {
             match state.get(cur).copied().unwrap_or(0) {
                 2 => break,
-                1 => {
-                    let start = walk.iter().position(|l| *l == cur).unwrap_or(0);
-                    let mut names: Vec<&str> = walk[start..].to_vec();
-                    names.push(cur);
-                    // A long cycle is shown by its first and last links.
-                    const SHOWN: usize = 6;
-                    let more = format!("… ({} more links)", names.len().saturating_sub(2 * SHOWN));
-                    if names.len() > 2 * SHOWN + 1 {
-                        let tail = names.split_off(names.len() - SHOWN);
-                        names.truncate(SHOWN);
-                        names.push(&more);
-                        names.extend(tail);
-                    }
-                    let j = parent_joint.get(cur).copied();
-                    let joint = j.map(|j| &joints[j]);
-                    return Err(Error::new(
-                        ErrorKind::Cycle,
-                        format!(
-                            "the links form a cycle (each link's parent is the next): {}",
-                            names.join(" → ")
-                        ),
-                    )
-                    .at(joint.and_then(|j| j.child_position.or(j.position))));
-                }
+                1 => return Err(cycle_error(&walk, cur, &parent_joint, joints)),
                 _ => {}
             }
             state.insert(cur, 1);
@@ -670,4 +666,34 @@ fn check_tree(links: &[Link], joints: &[Joint]) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The error for a cycle found by [`check_tree`]: `walk` reached `cur` a second time.
+fn cycle_error(
+    walk: &[&str],
+    cur: &str,
+    parent_joint: &HashMap<&str, usize>,
+    joints: &[Joint],
+) -> Error {
+    let start = walk.iter().position(|l| *l == cur).unwrap_or(0);
+    let mut names: Vec<&str> = walk[start..].to_vec();
+    names.push(cur);
+    // A long cycle is shown by its first and last links.
+    const SHOWN: usize = 6;
+    let more = format!("… ({} more links)", names.len().saturating_sub(2 * SHOWN));
+    if names.len() > 2 * SHOWN + 1 {
+        let tail = names.split_off(names.len() - SHOWN);
+        names.truncate(SHOWN);
+        names.push(&more);
+        names.extend(tail);
+    }
+    let joint = parent_joint.get(cur).map(|&j| &joints[j]);
+    Error::new(
+        ErrorKind::Cycle,
+        format!(
+            "the links form a cycle (each link's parent is the next): {}",
+            names.join(" → ")
+        ),
+    )
+    .at(joint.and_then(|j| j.child_position.or(j.position)))
 }
