@@ -2,18 +2,16 @@
 //! would.
 
 use ppoe_build::codegen::{self, Scalar as S, Source};
+use ppoe_build::literal::str_lit;
 use ppoe_build::{Config, Scalar, Urdf};
+use ppoe_test_robots as robots;
 use std::fmt::Write as _;
 
-#[path = "gen/robots.rs"]
-mod robots;
-
-/// Random robots whose tables are generated and compiled (see `gen/robots.rs`).
+/// Random robots whose tables are generated and compiled (see the `ppoe-test-robots` crate).
 const RANDOM_ROBOTS: usize = 40;
 
 fn main() -> Result<(), ppoe_build::Error> {
     println!("cargo:rerun-if-changed=build.rs");
-    println!("cargo:rerun-if-changed=gen/robots.rs");
     random_tables();
     // The seed robot of pytransform3d's PPOE example, both scalar types.
     Config::new("../test_data/urdf/seed.urdf")
@@ -51,14 +49,22 @@ fn random_tables() {
     let (mut src, mut list, mut rejected) = (String::new(), String::new(), String::new());
     for k in 0..RANDOM_ROBOTS {
         let (text, base, tip) = robots::robot(&mut rng, k);
-        let file = format!("random_{k}.urdf");
+        let suffix = robots::FILE_SUFFIXES[k % robots::FILE_SUFFIXES.len()];
+        let file = format!("random_{k}{suffix}.urdf");
+        // The text of a `&'static str` holding the URDF, and the link names, as literals
+        // (`{:?}` would leave some format characters raw).
+        let urdf_lit = format!(
+            "include_str!(concat!(env!(\"OUT_DIR\"), {}))",
+            str_lit(&format!("/{file}"))
+        );
+        let (base_lit, tip_lit) = (str_lit(&base), str_lit(&tip));
         std::fs::write(out_dir.join(&file), &text).expect("write a random URDF");
         let chain = match Urdf::parse(&text).and_then(|u| u.chain::<&str>(&base, &tip, None)) {
             Ok(c) => c,
             Err(e) => {
                 let _ = writeln!(
                     rejected,
-                    "    (include_str!(concat!(env!(\"OUT_DIR\"), \"/{file}\")), {base:?}, {tip:?}, {:?}),",
+                    "    ({urdf_lit}, {base_lit}, {tip_lit}, {:?}),",
                     e.kind().name()
                 );
                 continue;
@@ -85,7 +91,7 @@ fn random_tables() {
         };
         let _ = writeln!(
             list,
-            "    RandomTable {{ urdf: include_str!(concat!(env!(\"OUT_DIR\"), \"/{file}\")), base: {base:?}, tip: {tip:?}, f64: ppoe::chain::ChainRef {{ joints: &{name}.joints, home: {name}.home }}, f32: {f32_ref} }},"
+            "    RandomTable {{ urdf: {urdf_lit}, base: {base_lit}, tip: {tip_lit}, f64: ppoe::chain::ChainRef {{ joints: &{name}.joints, home: {name}.home }}, f32: {f32_ref} }},"
         );
     }
     src += &format!("\n/// The random robots' tables with their URDF text.\npub static RANDOM: &[RandomTable] = &[\n{list}];\n");

@@ -25,6 +25,12 @@ pub struct ChainJoint {
     pub lower: f64,
     /// The upper limit as written in the URDF (+∞ if absent).
     pub upper: f64,
+    /// The joint's home frame `L = T_base←child`: the pose of its child link in the base
+    /// frame at the home pose (every joint at 0), row-major 4×4. The joint's axis passes
+    /// through its origin; the screw axis is computed from it (`ŝ = R(L)·axis`, `q = p(L)`),
+    /// with the same products, so it agrees with pytransform3d bit for bit like the screw.
+    /// Finite whenever the screw is (a chain whose frames overflow is an error).
+    pub home_frame: [[f64; 4]; 4],
 }
 
 /// A serial chain extracted from a URDF, host side (owned strings, any number of joints).
@@ -89,6 +95,14 @@ impl RobotChain {
         ))
     }
 
+    /// The home frame of each moving joint, base to tip: [`ChainJoint::home_frame`], the
+    /// pose of the joint's child link in the base frame with every joint at 0 (row-major
+    /// 4×4; the axis passes through its origin). At joint values θ the frame of joint i is
+    /// `Exp(S₁θ₁)·…·Exp(Sᵢθᵢ)·Lᵢ` (space-frame product of exponentials).
+    pub fn home_frames(&self) -> Vec<[[f64; 4]; 4]> {
+        self.joints.iter().map(|j| j.home_frame).collect()
+    }
+
     /// The names of the moving joints, base to tip.
     pub fn joint_names(&self) -> Vec<&str> {
         self.joints.iter().map(|j| j.name.as_str()).collect()
@@ -105,13 +119,55 @@ impl Urdf {
     ///
     /// Fixed joints on the path (before, between and after the moving ones) are folded into
     /// the screw axes and the home pose.
+    ///
+    /// # Errors
+    ///
+    /// [`ErrorKind::UnknownLink`], [`ErrorKind::TipNotBelowBase`],
+    /// [`ErrorKind::UnsupportedJointType`], [`ErrorKind::Mimic`], [`ErrorKind::NotMovable`],
+    /// the errors of an explicit list ([`ErrorKind::UnknownJoint`],
+    /// [`ErrorKind::DuplicateName`], [`ErrorKind::NotOnPath`]), and for the chain's moving
+    /// joints [`ErrorKind::InvalidLimits`], [`ErrorKind::ZeroAxis`] and
+    /// [`ErrorKind::NonFinite`] (a product that overflows).
     pub fn chain<S: AsRef<str>>(
         &self,
         base: &str,
         tip: &str,
         joints: Option<&[S]>,
     ) -> Result<RobotChain> {
-        let link_pos = |name: &str| self.link(name).and_then(|l| l.position);
+        self.check_ends(base, tip)?;
+        let path = self.path(base, tip)?;
+        check_path(&path, base, tip)?;
+        let selected: Vec<usize> = match joints {
+            None => self.moving_on_path(&path, base, tip)?,
+            Some(list) => self.select(list, &path, base, tip)?,
+        };
+        let frames = HomeFrames::new(&path);
+        let mut out = Vec::with_capacity(selected.len());
+        for &i in &selected {
+            out.push(chain_joint(path[i], frames.link2base(i), &path[..=i])?);
+        }
+        let home = frames.link2base(path.len() - 1);
+        if home.iter().flatten().any(|x| !x.is_finite()) {
+            return Err(overflow_error(
+                &path,
+                &format!("the home pose of '{tip}' in '{base}'"),
+            ));
+        }
+        Ok(RobotChain {
+            robot: self.name.clone(),
+            base: base.to_string(),
+            tip: tip.to_string(),
+            joints: out,
+            home,
+        })
+    }
+
+    fn link_position(&self, name: &str) -> Option<crate::error::Position> {
+        self.link(name).and_then(|l| l.position)
+    }
+
+    /// Both links exist and differ.
+    fn check_ends(&self, base: &str, tip: &str) -> Result<()> {
         for (what, name) in [("base", base), ("tip", tip)] {
             if self.link(name).is_none() {
                 return Err(Error::new(
@@ -128,11 +184,15 @@ impl Urdf {
                 ErrorKind::TipNotBelowBase,
                 format!("the tip link '{tip}' is the base link itself: the chain is empty"),
             )
-            .at(link_pos(tip)));
+            .at(self.link_position(tip)));
         }
+        Ok(())
+    }
 
-        // Walk up from the tip. The tree was checked at parse time (one parent per link, no
-        // cycle), so the walk ends; the step bound makes that certain anyway.
+    /// The joints from `base` down to `tip`, base to tip, found by walking up from the tip.
+    /// The tree was checked at parse time (one parent per link, no cycle), so the walk
+    /// ends; the step bound makes that certain anyway.
+    fn path(&self, base: &str, tip: &str) -> Result<Vec<&UrdfJoint>> {
         let parent_joint: HashMap<&str, &UrdfJoint> =
             self.joints.iter().map(|j| (j.child.as_str(), j)).collect();
         let mut path: Vec<&UrdfJoint> = Vec::new();
@@ -152,147 +212,31 @@ impl Urdf {
                              '{base}'"
                         ),
                     )
-                    .at(link_pos(tip)));
+                    .at(self.link_position(tip)));
                 }
             }
         }
-        path.reverse(); // base to tip
+        path.reverse();
+        Ok(path)
+    }
 
-        for j in &path {
-            if matches!(j.joint_type, JointType::Planar | JointType::Floating) {
-                return Err(Error::new(
-                    ErrorKind::UnsupportedJointType,
-                    format!(
-                        "joint '{}' on the path from '{base}' to '{tip}' is {}; only revolute, \
-                         continuous, prismatic and fixed joints can form a chain",
-                        j.name,
-                        j.joint_type.as_str()
-                    ),
-                )
-                .at(j.position));
-            }
-            if j.mimic && j.joint_type.is_moving() {
-                return Err(Error::new(
-                    ErrorKind::Mimic,
-                    format!(
-                        "joint '{}' on the path from '{base}' to '{tip}' is a mimic joint; \
-                         mimic joints are not supported (its value would follow another \
-                         joint's): make it an independent joint or end the chain before it",
-                        j.name
-                    ),
-                )
-                .at(j.mimic_position.or(j.position)));
-            }
+    /// The default selection: every moving joint on the path (indices into `path`).
+    fn moving_on_path(&self, path: &[&UrdfJoint], base: &str, tip: &str) -> Result<Vec<usize>> {
+        let moving: Vec<usize> = (0..path.len())
+            .filter(|&i| path[i].joint_type.is_moving())
+            .collect();
+        if moving.is_empty() {
+            return Err(Error::new(
+                ErrorKind::NotMovable,
+                format!(
+                    "the path from '{base}' to '{tip}' has no moving joint (only fixed \
+                     joints: {})",
+                    names(path)
+                ),
+            )
+            .at(self.link_position(tip)));
         }
-
-        // Indices (into `path`) of the moving joints of the chain.
-        let selected: Vec<usize> = match joints {
-            None => {
-                let moving: Vec<usize> = (0..path.len())
-                    .filter(|&i| path[i].joint_type.is_moving())
-                    .collect();
-                if moving.is_empty() {
-                    return Err(Error::new(
-                        ErrorKind::NotMovable,
-                        format!(
-                            "the path from '{base}' to '{tip}' has no moving joint (only fixed \
-                             joints: {})",
-                            names(&path)
-                        ),
-                    )
-                    .at(link_pos(tip)));
-                }
-                moving
-            }
-            Some(list) => self.select(list, &path, base, tip)?,
-        };
-
-        // T_base←child for every joint on the path, as pytransform3d's get_transform: the
-        // direct edge for a child of the base, otherwise I, then T ← C_k·T from the link up.
-        // That costs O(i) products per joint, O(n²) per chain; beyond EXACT_ORDER_MAX_PATH
-        // joints the products are accumulated base to tip instead (O(n); equal up to
-        // rounding, ~1e-16 relative).
-        let prefix: Option<Vec<Mat4>> =
-            (path.len() > EXACT_ORDER_MAX_PATH).then(|| prefix_products(&path));
-        let link2base = |i: usize| -> Mat4 {
-            if let Some(prefix) = &prefix {
-                return prefix[i];
-            }
-            if i == 0 {
-                return path[0].child2parent;
-            }
-            let mut t = IDENTITY;
-            for j in path[..=i].iter().rev() {
-                t = math::mul4(&j.child2parent, &t);
-            }
-            t
-        };
-
-        let mut out = Vec::with_capacity(selected.len());
-        for &i in &selected {
-            let j = path[i];
-            check_limits(j)?;
-            let l = link2base(i);
-            let s = math::rotate(&l, j.axis);
-            let n = math::norm(s);
-            if n == 0.0 {
-                return Err(Error::new(
-                    ErrorKind::ZeroAxis,
-                    format!(
-                        "joint '{}' ({}): the axis is (0, 0, 0); a moving joint needs a \
-                         direction",
-                        j.name,
-                        j.joint_type.as_str()
-                    ),
-                )
-                .at(j.axis_position.or(j.position)));
-            }
-            let s = [s[0] / n, s[1] / n, s[2] / n];
-            let (kind, screw) = match j.joint_type {
-                JointType::Prismatic => (JointKind::Prismatic, [0.0, 0.0, 0.0, s[0], s[1], s[2]]),
-                t => {
-                    let q = [l[0][3], l[1][3], l[2][3]];
-                    let c = math::cross(q, s);
-                    // pytransform3d adds h·ŝ with h = 0.0 (this only affects signed zeros).
-                    let v = [c[0] + 0.0 * s[0], c[1] + 0.0 * s[1], c[2] + 0.0 * s[2]];
-                    let kind = if t == JointType::Continuous {
-                        JointKind::Continuous
-                    } else {
-                        JointKind::Revolute
-                    };
-                    (kind, [s[0], s[1], s[2], v[0], v[1], v[2]])
-                }
-            };
-            if screw.iter().any(|x| !x.is_finite()) {
-                return Err(overflow_error(
-                    &path[..=i],
-                    &format!("the screw axis of joint '{}'", j.name),
-                ));
-            }
-            out.push(ChainJoint {
-                name: j.name.clone(),
-                kind,
-                screw,
-                lower: j.lower,
-                upper: j.upper,
-            });
-        }
-
-        let home = link2base(path.len() - 1);
-        if home.iter().flatten().any(|x| !x.is_finite()) {
-            return Err(overflow_error(
-                &path,
-                &format!("the home pose of '{tip}' in '{base}'"),
-            ));
-        }
-
-        Ok(RobotChain {
-            robot: self.name.clone(),
-            base: base.to_string(),
-            tip: tip.to_string(),
-            joints: out,
-            home,
-        })
+        Ok(moving)
     }
 
     /// Checks an explicit joint list against the path; returns indices into `path`.
@@ -341,34 +285,160 @@ impl Urdf {
                 )
                 .at(joint.position));
             };
-            if !joint.joint_type.is_moving() {
-                return Err(Error::new(
-                    ErrorKind::NotMovable,
-                    format!(
-                        "joint '{name}' is {}, it cannot be listed as a moving joint",
-                        joint.joint_type.as_str()
-                    ),
-                )
-                .at(joint.position));
-            }
-            if let Some(&prev) = out.last() {
-                if i < prev {
-                    return Err(Error::new(
-                        ErrorKind::NotOnPath,
-                        format!(
-                            "joint '{name}' is listed after '{}' but comes before it on the \
-                             path from '{base}' to '{tip}': list the joints in path order, \
-                             base to tip (the path: {})",
-                            path[prev].name,
-                            names(path)
-                        ),
-                    )
-                    .at(joint.position));
-                }
-            }
+            check_listed(joint, i, out.last().copied(), path, base, tip)?;
             out.push(i);
         }
         Ok(out)
+    }
+}
+
+/// Every joint on the path can be part of a chain: no planar or floating joint, no moving
+/// mimic joint.
+fn check_path(path: &[&UrdfJoint], base: &str, tip: &str) -> Result<()> {
+    for j in path {
+        if matches!(j.joint_type, JointType::Planar | JointType::Floating) {
+            return Err(Error::new(
+                ErrorKind::UnsupportedJointType,
+                format!(
+                    "joint '{}' on the path from '{base}' to '{tip}' is {}; only revolute, \
+                     continuous, prismatic and fixed joints can form a chain",
+                    j.name,
+                    j.joint_type.as_str()
+                ),
+            )
+            .at(j.position));
+        }
+        if j.mimic && j.joint_type.is_moving() {
+            return Err(Error::new(
+                ErrorKind::Mimic,
+                format!(
+                    "joint '{}' on the path from '{base}' to '{tip}' is a mimic joint; \
+                     mimic joints are not supported (its value would follow another \
+                     joint's): make it an independent joint or end the chain before it",
+                    j.name
+                ),
+            )
+            .at(j.mimic_position.or(j.position)));
+        }
+    }
+    Ok(())
+}
+
+/// `T_base←child` for every joint on a path, as pytransform3d's `get_transform` computes
+/// it: the direct edge for a child of the base, otherwise the identity, then `T ← C_k·T`
+/// from the link up. That costs O(i) products per joint, O(n²) per chain; beyond
+/// [`EXACT_ORDER_MAX_PATH`] joints the products are accumulated base to tip instead (O(n);
+/// equal up to rounding, ~1e-16 relative).
+struct HomeFrames<'a, 'u> {
+    path: &'a [&'u UrdfJoint],
+    prefix: Option<Vec<Mat4>>,
+}
+
+impl<'a, 'u> HomeFrames<'a, 'u> {
+    fn new(path: &'a [&'u UrdfJoint]) -> Self {
+        let prefix = (path.len() > EXACT_ORDER_MAX_PATH).then(|| prefix_products(path));
+        Self { path, prefix }
+    }
+
+    /// `T_base←child` of joint `i` of the path.
+    fn link2base(&self, i: usize) -> Mat4 {
+        if let Some(prefix) = &self.prefix {
+            return prefix[i];
+        }
+        if i == 0 {
+            return self.path[0].child2parent;
+        }
+        let mut t = IDENTITY;
+        for j in self.path[..=i].iter().rev() {
+            t = math::mul4(&j.child2parent, &t);
+        }
+        t
+    }
+}
+
+/// The chain joint of the moving joint `j` whose child frame is `l` (`T_base←child`);
+/// `path` runs from the base to `j`, for the overflow error.
+fn chain_joint(j: &UrdfJoint, l: Mat4, path: &[&UrdfJoint]) -> Result<ChainJoint> {
+    check_limits(j)?;
+    let s = math::rotate(&l, j.axis);
+    let n = math::norm(s);
+    if n == 0.0 {
+        return Err(Error::new(
+            ErrorKind::ZeroAxis,
+            format!(
+                "joint '{}' ({}): the axis is (0, 0, 0); a moving joint needs a direction",
+                j.name,
+                j.joint_type.as_str()
+            ),
+        )
+        .at(j.axis_position.or(j.position)));
+    }
+    let s = [s[0] / n, s[1] / n, s[2] / n];
+    let (kind, screw) = match j.joint_type {
+        JointType::Prismatic => (JointKind::Prismatic, [0.0, 0.0, 0.0, s[0], s[1], s[2]]),
+        t => {
+            let q = [l[0][3], l[1][3], l[2][3]];
+            let c = math::cross(q, s);
+            // pytransform3d adds h·ŝ with h = 0.0 (this only affects signed zeros).
+            let v = [c[0] + 0.0 * s[0], c[1] + 0.0 * s[1], c[2] + 0.0 * s[2]];
+            let kind = if t == JointType::Continuous {
+                JointKind::Continuous
+            } else {
+                JointKind::Revolute
+            };
+            (kind, [s[0], s[1], s[2], v[0], v[1], v[2]])
+        }
+    };
+    if screw.iter().any(|x| !x.is_finite()) {
+        return Err(overflow_error(
+            path,
+            &format!("the screw axis of joint '{}'", j.name),
+        ));
+    }
+    Ok(ChainJoint {
+        name: j.name.clone(),
+        kind,
+        screw,
+        lower: j.lower,
+        upper: j.upper,
+        home_frame: l,
+    })
+}
+
+/// A listed joint `joint`, at index `i` of the path, must be moving and come after the
+/// previous listed one (at `prev`).
+fn check_listed(
+    joint: &UrdfJoint,
+    i: usize,
+    prev: Option<usize>,
+    path: &[&UrdfJoint],
+    base: &str,
+    tip: &str,
+) -> Result<()> {
+    let name = &joint.name;
+    if !joint.joint_type.is_moving() {
+        return Err(Error::new(
+            ErrorKind::NotMovable,
+            format!(
+                "joint '{name}' is {}, it cannot be listed as a moving joint",
+                joint.joint_type.as_str()
+            ),
+        )
+        .at(joint.position));
+    }
+    match prev {
+        Some(prev) if i < prev => Err(Error::new(
+            ErrorKind::NotOnPath,
+            format!(
+                "joint '{name}' is listed after '{}' but comes before it on the path from \
+                 '{base}' to '{tip}': list the joints in path order, base to tip (the path: \
+                 {})",
+                path[prev].name,
+                names(path)
+            ),
+        )
+        .at(joint.position)),
+        _ => Ok(()),
     }
 }
 

@@ -59,6 +59,7 @@
 //! /// * joints, base to tip:
 //! ///   * `joint1` (revolute, limits [-1, 1])
 //! ///   * …
+//! #[rustfmt::skip]
 //! #[allow(clippy::approx_constant, clippy::excessive_precision)]
 //! pub const SEED: ppoe::chain::Chain<f64, 6> = ppoe::chain::Chain::new(
 //!     "linkmount",
@@ -74,7 +75,10 @@
 //!         ),
 //!         // …
 //!     ],
-//!     ppoe::se3::Transform::from_parts(/* rotation rows */, /* translation */),
+//!     ppoe::se3::Transform::from_parts(
+//!         [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], // rotation rows
+//!         [0.0, 0.0, 0.0], // translation
+//!     ),
 //! );
 //! ```
 //!
@@ -96,8 +100,12 @@
 //!   needs a sin/cos, 19 multiplications and 17 additions per joint, nothing else.
 //!   Prismatic joints use `Joint::new`.
 //! * The output is deterministic (it depends on the URDF's bytes and the options only; the
-//!   doc comment names the file, not its directory) and already formatted as rustfmt
-//!   formats it.
+//!   doc comment names the file, not its directory), in one fixed layout marked
+//!   `#[rustfmt::skip]` (one argument per line, each vector of numbers on one line).
+//! * Names (robot, links, joints, file) may hold any character: string literals hold
+//!   printable ASCII only (`\u{..}` escapes), and comments escape control, format
+//!   (bidirectional controls included), separator and private-use characters
+//!   ([`literal::comment_text`]), so every table compiles.
 //! * The item compiles in a `#![no_std]` crate that depends on `ppoe`.
 //!
 //! ## What is computed (pytransform3d's conventions, MATH.md §4 and §5.1)
@@ -151,7 +159,9 @@
 
 pub mod chain;
 pub mod codegen;
+mod dtd;
 pub mod error;
+pub mod literal;
 mod math;
 pub mod urdf;
 
@@ -309,18 +319,31 @@ impl Config {
     }
 
     /// Generates the source and writes it to `path` (rewriting the file only if its content
-    /// changed).
+    /// changed; through a temporary file and a rename, so the file is never partial).
     pub fn write_to(&self, path: impl AsRef<Path>) -> Result<()> {
         let path = path.as_ref();
         let source = self.generate()?;
         if std::fs::read(path).ok().as_deref() == Some(source.as_bytes()) {
             return Ok(());
         }
-        std::fs::write(path, source).map_err(|e| {
+        write_atomically(path, source.as_bytes()).map_err(|e| {
             Error::new(
                 ErrorKind::Io,
                 format!("cannot write {}: {e}", path.display()),
             )
         })
     }
+}
+
+/// Writes `bytes` to a temporary file next to `path`, then renames it over `path`, so that
+/// a reader (a concurrent build, an interrupted one) never sees a partial table.
+fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(format!(".tmp{}", std::process::id()));
+    let tmp = PathBuf::from(tmp);
+    std::fs::write(&tmp, bytes)
+        .and_then(|()| std::fs::rename(&tmp, path))
+        .inspect_err(|_| {
+            let _ = std::fs::remove_file(&tmp);
+        })
 }

@@ -37,6 +37,11 @@
 //! Finite but huge numbers (`1e300`) are accepted; if the products along a chain overflow,
 //! extracting that chain is a [`ErrorKind::NonFinite`] error naming the joint.
 //!
+//! A DTD is allowed, but its internal entities may expand the document by at most 1 MiB in
+//! total (every reference charged its entity's fully expanded size, checked before the XML
+//! parser runs): a small URDF whose entities would expand to gigabytes is an
+//! [`ErrorKind::Xml`] error, not an exhausted memory.
+//!
 //! Nothing here recurses: the tree checks walk the parent links with explicit loops, so a
 //! serial chain of 10⁴ or more links (or a cycle through them) is no problem.
 
@@ -143,6 +148,7 @@ impl Urdf {
     /// Parses URDF text. Never panics; every problem is an [`Error`].
     pub fn parse(text: &str) -> Result<Self> {
         let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        crate::dtd::check(text, |offset| end_position(&text[..offset]))?;
         let options = roxmltree::ParsingOptions {
             allow_dtd: true,
             ..roxmltree::ParsingOptions::default()
@@ -250,6 +256,11 @@ impl<'input> LineIndex<'input> {
     }
 }
 
+/// `" at line:column"` for a message, or nothing.
+fn at(position: Option<Position>) -> String {
+    position.map_or(String::new(), |p| format!(" at {p}"))
+}
+
 /// Shortens an attribute value for a message.
 fn shown(value: &str) -> String {
     const MAX: usize = 60;
@@ -317,7 +328,18 @@ impl<'input> Parser<'_, 'input> {
             .at(self.node_pos(root)));
         }
         let name = self.required(root, "name", "<robot>")?;
+        let (links, link_index) = self.links(root)?;
+        let joints = self.joints(root, &link_index)?;
+        check_tree(&links, &joints)?;
+        Ok(Urdf {
+            name,
+            links,
+            joints,
+        })
+    }
 
+    /// The `<link>` children of the root, in document order, and the index of each name.
+    fn links(&self, root: Node<'_, 'input>) -> Result<(Vec<Link>, HashMap<String, usize>)> {
         let mut links: Vec<Link> = Vec::new();
         let mut link_index: HashMap<String, usize> = HashMap::new();
         for node in root
@@ -327,12 +349,12 @@ impl<'input> Parser<'_, 'input> {
             let link_name = self.required(node, "name", "<link>")?;
             let position = self.node_pos(node);
             if let Some(&first) = link_index.get(&link_name) {
-                let at = links[first]
-                    .position
-                    .map_or(String::new(), |p| format!(" at {p}"));
                 return Err(Error::new(
                     ErrorKind::DuplicateName,
-                    format!("link '{link_name}' is defined twice (first{at})"),
+                    format!(
+                        "link '{link_name}' is defined twice (first{})",
+                        at(links[first].position)
+                    ),
                 )
                 .at(position));
             }
@@ -342,107 +364,49 @@ impl<'input> Parser<'_, 'input> {
                 position,
             });
         }
+        Ok((links, link_index))
+    }
 
+    /// The `<joint>` children of the root, in document order.
+    fn joints(
+        &self,
+        root: Node<'_, 'input>,
+        link_index: &HashMap<String, usize>,
+    ) -> Result<Vec<Joint>> {
         let mut joints: Vec<Joint> = Vec::new();
         let mut joint_index: HashMap<String, usize> = HashMap::new();
         for node in root
             .children()
             .filter(|c| c.is_element() && c.tag_name().name() == "joint")
         {
-            let joint = self.joint(node, &link_index)?;
+            let joint = self.joint(node, link_index)?;
             if let Some(&first) = joint_index.get(&joint.name) {
-                let at = joints[first]
-                    .position
-                    .map_or(String::new(), |p| format!(" at {p}"));
                 return Err(Error::new(
                     ErrorKind::DuplicateName,
-                    format!("joint '{}' is defined twice (first{at})", joint.name),
+                    format!(
+                        "joint '{}' is defined twice (first{})",
+                        joint.name,
+                        at(joints[first].position)
+                    ),
                 )
                 .at(joint.position));
             }
             joint_index.insert(joint.name.clone(), joints.len());
             joints.push(joint);
         }
-
-        check_tree(&links, &joints)?;
-        Ok(Urdf {
-            name,
-            links,
-            joints,
-        })
+        Ok(joints)
     }
 
     fn joint(&self, node: Node<'_, 'input>, links: &HashMap<String, usize>) -> Result<Joint> {
         let position = self.node_pos(node);
         let name = self.required(node, "name", "<joint>")?;
         let what = format!("joint '{name}'");
-        let type_str = self.required(node, "type", &what)?;
-        let joint_type = match type_str.as_str() {
-            "revolute" => JointType::Revolute,
-            "continuous" => JointType::Continuous,
-            "prismatic" => JointType::Prismatic,
-            "fixed" => JointType::Fixed,
-            "planar" => JointType::Planar,
-            "floating" => JointType::Floating,
-            other => {
-                let attr = attribute(node, "type");
-                return Err(Error::new(
-                    ErrorKind::UnsupportedJointType,
-                    format!(
-                        "{what}: type {} is not a URDF joint type (revolute, continuous, \
-                         prismatic, fixed, planar, floating)",
-                        shown(other)
-                    ),
-                )
-                .at(attr.and_then(|a| self.value_pos(&a)).or(position)));
-            }
-        };
-
+        let joint_type = self.joint_type(node, &what)?;
         let (parent, _) = self.link_ref(node, "parent", &what, links)?;
         let (child, child_position) = self.link_ref(node, "child", &what, links)?;
-
-        let (xyz, rpy) = match first_child(node, "origin") {
-            Some(origin) => (
-                self.vec3(origin, "xyz", &what)?.unwrap_or([0.0; 3]),
-                self.vec3(origin, "rpy", &what)?,
-            ),
-            None => ([0.0; 3], None),
-        };
-        // As pytransform3d: the Euler product is evaluated whenever `rpy` is given (even
-        // "0 0 0", which only affects the sign of zeros), the identity otherwise.
-        let rotation = match rpy {
-            Some(rpy) => math::rotation_from_rpy(rpy),
-            None => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-        };
-        let child2parent = math::transform_from(&rotation, xyz);
-
-        // pytransform3d reads the axis of moving joints only; a fixed joint's axis is ignored
-        // (it may even be zero).
-        let mut axis = [1.0, 0.0, 0.0];
-        let mut axis_position = None;
-        if joint_type != JointType::Fixed {
-            if let Some(axis_node) = first_child(node, "axis") {
-                if let Some(v) = self.vec3(axis_node, "xyz", &what)? {
-                    axis = math::normalized(v);
-                    axis_position = attribute(axis_node, "xyz").and_then(|a| self.value_pos(&a));
-                }
-            }
-        }
-
-        let (mut lower, mut upper) = (f64::NEG_INFINITY, f64::INFINITY);
-        let mut limit_position = None;
-        if joint_type == JointType::Fixed {
-            (lower, upper) = (0.0, 0.0);
-        } else if let Some(limit) = first_child(node, "limit") {
-            limit_position = self.node_pos(limit);
-            if let Some(v) = self.limit(limit, "lower", &what)? {
-                lower = v;
-            }
-            if let Some(v) = self.limit(limit, "upper", &what)? {
-                upper = v;
-            }
-        }
-
+        let child2parent = self.origin(node, &what)?;
+        let (axis, axis_position) = self.axis(node, joint_type, &what)?;
+        let (lower, upper, limit_position) = self.limits(node, joint_type, &what)?;
         let mimic_node = first_child(node, "mimic");
         Ok(Joint {
             name,
@@ -460,6 +424,92 @@ impl<'input> Parser<'_, 'input> {
             mimic_position: mimic_node.and_then(|m| self.node_pos(m)),
             limit_position,
         })
+    }
+
+    /// The `type` attribute: one of URDF's six joint types.
+    fn joint_type(&self, node: Node<'_, 'input>, what: &str) -> Result<JointType> {
+        let type_str = self.required(node, "type", what)?;
+        Ok(match type_str.as_str() {
+            "revolute" => JointType::Revolute,
+            "continuous" => JointType::Continuous,
+            "prismatic" => JointType::Prismatic,
+            "fixed" => JointType::Fixed,
+            "planar" => JointType::Planar,
+            "floating" => JointType::Floating,
+            other => {
+                let attr = attribute(node, "type");
+                return Err(Error::new(
+                    ErrorKind::UnsupportedJointType,
+                    format!(
+                        "{what}: type {} is not a URDF joint type (revolute, continuous, \
+                         prismatic, fixed, planar, floating)",
+                        shown(other)
+                    ),
+                )
+                .at(attr
+                    .and_then(|a| self.value_pos(&a))
+                    .or(self.node_pos(node))));
+            }
+        })
+    }
+
+    /// The child-to-parent transform of `<origin xyz rpy>` (identity where absent).
+    fn origin(&self, node: Node<'_, 'input>, what: &str) -> Result<math::Mat4> {
+        let (xyz, rpy) = match first_child(node, "origin") {
+            Some(origin) => (
+                self.vec3(origin, "xyz", what)?.unwrap_or([0.0; 3]),
+                self.vec3(origin, "rpy", what)?,
+            ),
+            None => ([0.0; 3], None),
+        };
+        // As pytransform3d: the Euler product is evaluated whenever `rpy` is given (even
+        // "0 0 0", which only affects the sign of zeros), the identity otherwise.
+        let rotation = match rpy {
+            Some(rpy) => math::rotation_from_rpy(rpy),
+            None => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        };
+        Ok(math::transform_from(&rotation, xyz))
+    }
+
+    /// The normalised `<axis xyz>` ((1, 0, 0) where absent) and where its value starts.
+    fn axis(
+        &self,
+        node: Node<'_, 'input>,
+        joint_type: JointType,
+        what: &str,
+    ) -> Result<([f64; 3], Option<Position>)> {
+        // pytransform3d reads the axis of moving joints only; a fixed joint's axis is
+        // ignored (it may even be zero).
+        if joint_type != JointType::Fixed {
+            if let Some(axis_node) = first_child(node, "axis") {
+                if let Some(v) = self.vec3(axis_node, "xyz", what)? {
+                    let at = attribute(axis_node, "xyz").and_then(|a| self.value_pos(&a));
+                    return Ok((math::normalized(v), at));
+                }
+            }
+        }
+        Ok(([1.0, 0.0, 0.0], None))
+    }
+
+    /// `<limit lower upper>` (−∞/+∞ where absent, (0, 0) for fixed joints) and where the
+    /// element starts.
+    fn limits(
+        &self,
+        node: Node<'_, 'input>,
+        joint_type: JointType,
+        what: &str,
+    ) -> Result<(f64, f64, Option<Position>)> {
+        if joint_type == JointType::Fixed {
+            return Ok((0.0, 0.0, None));
+        }
+        let Some(limit) = first_child(node, "limit") else {
+            return Ok((f64::NEG_INFINITY, f64::INFINITY, None));
+        };
+        let lower = self
+            .limit(limit, "lower", what)?
+            .unwrap_or(f64::NEG_INFINITY);
+        let upper = self.limit(limit, "upper", what)?.unwrap_or(f64::INFINITY);
+        Ok((lower, upper, self.node_pos(limit)))
     }
 
     /// `<parent link>` / `<child link>`: present, non-empty, naming an existing link.
@@ -601,30 +651,7 @@ fn check_tree(links: &[Link], joints: &[Joint]) -> Result<()> {
         loop {
             match state.get(cur).copied().unwrap_or(0) {
                 2 => break,
-                1 => {
-                    let start = walk.iter().position(|l| *l == cur).unwrap_or(0);
-                    let mut names: Vec<&str> = walk[start..].to_vec();
-                    names.push(cur);
-                    // A long cycle is shown by its first and last links.
-                    const SHOWN: usize = 6;
-                    let more = format!("… ({} more links)", names.len().saturating_sub(2 * SHOWN));
-                    if names.len() > 2 * SHOWN + 1 {
-                        let tail = names.split_off(names.len() - SHOWN);
-                        names.truncate(SHOWN);
-                        names.push(&more);
-                        names.extend(tail);
-                    }
-                    let j = parent_joint.get(cur).copied();
-                    let joint = j.map(|j| &joints[j]);
-                    return Err(Error::new(
-                        ErrorKind::Cycle,
-                        format!(
-                            "the links form a cycle (each link's parent is the next): {}",
-                            names.join(" → ")
-                        ),
-                    )
-                    .at(joint.and_then(|j| j.child_position.or(j.position))));
-                }
+                1 => return Err(cycle_error(&walk, cur, &parent_joint, joints)),
                 _ => {}
             }
             state.insert(cur, 1);
@@ -639,4 +666,34 @@ fn check_tree(links: &[Link], joints: &[Joint]) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The error for a cycle found by [`check_tree`]: `walk` reached `cur` a second time.
+fn cycle_error(
+    walk: &[&str],
+    cur: &str,
+    parent_joint: &HashMap<&str, usize>,
+    joints: &[Joint],
+) -> Error {
+    let start = walk.iter().position(|l| *l == cur).unwrap_or(0);
+    let mut names: Vec<&str> = walk[start..].to_vec();
+    names.push(cur);
+    // A long cycle is shown by its first and last links.
+    const SHOWN: usize = 6;
+    let more = format!("… ({} more links)", names.len().saturating_sub(2 * SHOWN));
+    if names.len() > 2 * SHOWN + 1 {
+        let tail = names.split_off(names.len() - SHOWN);
+        names.truncate(SHOWN);
+        names.push(&more);
+        names.extend(tail);
+    }
+    let joint = parent_joint.get(cur).map(|&j| &joints[j]);
+    Error::new(
+        ErrorKind::Cycle,
+        format!(
+            "the links form a cycle (each link's parent is the next): {}",
+            names.join(" → ")
+        ),
+    )
+    .at(joint.and_then(|j| j.child_position.or(j.position)))
 }

@@ -139,6 +139,23 @@ fn seed_screw_axes_and_home_pose() {
         }
     }
 
+    // The home frames are those products: the pose of each joint's child link.
+    let frames = c.home_frames();
+    assert_eq!(frames.len(), 6);
+    for (i, f) in frames.iter().enumerate() {
+        assert_eq!(*f, c.joints[i].home_frame);
+        for r in 0..4 {
+            for k in 0..4 {
+                assert!(
+                    close(f[r][k], link2base[i][r][k], 1e-15),
+                    "frame {i} [{r}][{k}]: {} vs {}",
+                    f[r][k],
+                    link2base[i][r][k]
+                );
+            }
+        }
+    }
+
     // Limits as written: joint2 has only `lower`, joint3 only `upper`, 4-6 no <limit>.
     let inf = f64::INFINITY;
     let limits: Vec<(f64, f64)> = c.joints.iter().map(|j| (j.lower, j.upper)).collect();
@@ -325,6 +342,19 @@ fn fixed_joints_are_folded_in_and_off_path_problems_do_not_matter() {
     assert!(close(s2[4], 1.0, 1e-15) && s2[..3] == [0.0; 3]);
     // The tip is 2 along the mount's y... i.e. along base y.
     assert!(close(c.home[1][3], 2.0, 1e-15) && close(c.home[2][3], 1.0, 1e-15));
+    // Home frames fold the fixed joints in: j1's child at (0, 0, 1) turned by the yaw, j2's
+    // child (a prismatic joint with no origin) at the tip.
+    let f = c.home_frames();
+    let yaw = [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+    for (frame, p) in f.iter().zip([[0.0, 0.0, 1.0], [0.0, 2.0, 1.0]]) {
+        for r in 0..3 {
+            for k in 0..3 {
+                assert!(close(frame[r][k], yaw[r][k], 1e-15), "{frame:?}");
+            }
+            assert!(close(frame[r][3], p[r], 1e-15), "{frame:?}");
+        }
+        assert_eq!(frame[3], [0.0, 0.0, 0.0, 1.0]);
+    }
 }
 
 #[test]
@@ -348,6 +378,9 @@ fn an_explicit_list_may_freeze_moving_joints() {
     assert_eq!(c.joint_names(), ["j1", "j3"]);
     assert_eq!(c.joints[1].screw, [0.0, 0.0, 1.0, 0.0, -3.0, 0.0]);
     assert_eq!(c.home[0][3], 3.0);
+    // The frozen joint's origin is in j3's home frame; j2 has none.
+    let origins: Vec<f64> = c.home_frames().iter().map(|f| f[0][3]).collect();
+    assert_eq!(origins, [1.0, 3.0]);
 }
 
 #[test]

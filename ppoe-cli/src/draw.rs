@@ -2,7 +2,6 @@
 //! frames along the chain, the equiprobable surface of the tool position and the
 //! second-order mean, as a [`picture::Frame`].
 
-use crate::frames::{self, Mat4};
 use crate::picture::{self, Frame};
 use crate::{eval, seed, ChainArgs, SurfaceArg, SurfaceArgs};
 use anyhow::{bail, Context};
@@ -10,6 +9,9 @@ use ppoe::chain::{ChainRef, Convention};
 use ppoe::ellipsoid::{self, Surface};
 use ppoe::{Mat6, Transform, Vec3};
 use std::io::{IsTerminal, Write};
+
+/// A row-major 4×4 homogeneous transform.
+type Mat4 = [[f64; 4]; 4];
 use std::path::Path;
 use std::time::Instant;
 
@@ -78,7 +80,7 @@ pub fn state(
         .map_err(|e| anyhow::anyhow!("{e}"))?;
 
     // Joint frames along the chain: T_base←child_i(θ) = D₁…Dᵢ·L_i.
-    let mut frames_out = vec![frames::identity()];
+    let mut frames_out = vec![Transform::<f64>::identity().to_matrix4()];
     let mut points = vec![[0.0, 0.0, 0.0]];
     let mut p = Transform::identity();
     for ((j, theta), l) in chain.joints.iter().zip(thetas).zip(home_frames) {
@@ -135,10 +137,7 @@ pub fn frames_for_cases(
     let (k, label) = level(surface)?;
     let config = chain_args.config();
     let robot = config.chain()?;
-    let bytes = std::fs::read(&chain_args.urdf)
-        .with_context(|| format!("cannot read {}", chain_args.urdf.display()))?;
-    let urdf = ppoe_build::Urdf::parse_bytes(&bytes)?;
-    let home_frames = frames::joint_home_frames(&urdf, &robot).map_err(anyhow::Error::msg)?;
+    let home_frames = robot.home_frames();
     let input = eval::read_input(input)?;
     if input.cases.is_empty() {
         bail!("the input has no cases");

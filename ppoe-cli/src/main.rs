@@ -13,7 +13,6 @@
 
 mod draw;
 mod eval;
-mod frames;
 mod mesh;
 mod picture;
 mod seed;

@@ -67,9 +67,7 @@ mod tests {
     #[test]
     fn build_time_frames_equal_runtime_frames() {
         let rt = runtime_chain();
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../test_data/urdf/seed.urdf");
-        let urdf = ppoe_build::Urdf::parse_bytes(&std::fs::read(path).unwrap()).unwrap();
-        let frames = crate::frames::joint_home_frames(&urdf, &rt).unwrap();
+        let frames = rt.home_frames();
         assert_eq!(frames.as_slice(), SEED_JOINT_FRAMES.as_slice());
         // Each joint's screw axis passes through its frame's origin.
         for (j, f) in SEED.joints.iter().zip(&SEED_JOINT_FRAMES) {

@@ -5,7 +5,7 @@
 //!
 //! Tables: [`SEED`] and [`SEED_F32`] (the seed robot of pytransform3d's PPOE example,
 //! `linkmount` → `tcp`), [`GANTRY_F32`] (prismatic joints), [`TORSO`] (a single joint), and
-//! [`RANDOM`]: 40 random robots (`gen/robots.rs`: every joint type, fixed joints between
+//! [`RANDOM`]: 40 random robots (the `ppoe-test-robots` crate, `robots/`: every joint type, fixed joints between
 //! moving ones, rpy everywhere, unnormalised axes, hostile names, extreme finite numbers).
 #![no_std]
 #![forbid(unsafe_code)]
@@ -14,7 +14,7 @@ include!(concat!(env!("OUT_DIR"), "/seed_table.rs"));
 include!(concat!(env!("OUT_DIR"), "/gantry_table.rs"));
 include!(concat!(env!("OUT_DIR"), "/torso_table.rs"));
 
-/// A table generated from a random URDF robot (`gen/robots.rs`) with the URDF text it came
+/// A table generated from a random URDF robot (the `ppoe-test-robots` crate, `robots/`) with the URDF text it came
 /// from: the tests parse the text at run time and compare.
 pub struct RandomTable {
     /// The URDF text.

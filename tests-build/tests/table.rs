@@ -152,7 +152,7 @@ fn single_joint_table_equals_the_runtime_chain() {
     assert_f64_table(&TORSO, &chain);
 }
 
-/// Tables of 40 random robots (`gen/robots.rs`: hostile names, extreme finite numbers, fixed
+/// Tables of 40 random robots (the `ppoe-test-robots` crate, `robots/`: hostile names, extreme finite numbers, fixed
 /// joints, rpy everywhere, unnormalised axes) compiled into the crate hold the values of
 /// the chain parsed at run time from the same text, and give the same PPOE.
 #[test]

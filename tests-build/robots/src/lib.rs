@@ -1,35 +1,49 @@
-//! Random URDF robots for the end-to-end table check (included by `build.rs`): serial
-//! chains of 1–9 joints of every supported type, fixed joints between them, rpy
-//! everywhere, unnormalised axes, hostile names (quotes, backslashes, non-ASCII, XML
-//! entities) and extreme but finite numbers (subnormals, −0, 10^±300, ±1e308 limits).
-//! Deterministic (a fixed-seed xorshift), so the build is reproducible.
+//! Random URDF robots for the end-to-end table check (tests-build's `build.rs` generates
+//! and compiles their tables): serial chains of 1–9 joints of every supported type, fixed
+//! joints between them, rpy everywhere, unnormalised axes, hostile names and extreme but
+//! finite numbers (subnormals, −0, 10^±300, ±1e308 limits). Deterministic (a fixed-seed
+//! xorshift), so the build is reproducible.
+//!
+//! The names hold quotes, backslashes, XML entities, non-ASCII letters and a character of
+//! every Unicode category that could break generated source: controls (Cc, C0 and C1),
+//! format characters (Cf) among them every bidirectional control rustc rejects in comments
+//! and literals, line and paragraph separators (Zl, Zp), non-ASCII spaces (Zs), private use
+//! (Co), unassigned code points and noncharacters (Cn), a combining mark (Mn) first, and
+//! `*/`. Every one is a valid XML 1.0 character.
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
 
 /// xorshift64*: enough randomness for test inputs, no dependency.
 pub struct Rng(u64);
 
 impl Rng {
+    /// A generator seeded with `seed` (0 is replaced by 1).
     pub fn new(seed: u64) -> Self {
         Rng(seed.max(1))
     }
-    pub fn next(&mut self) -> u64 {
+    /// The next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;
         self.0 ^= self.0 >> 27;
         self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
     }
+    /// A value in `0..n` (`n > 0`).
     pub fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
+        (self.next_u64() % n as u64) as usize
     }
+    /// A random element of `xs` (not empty).
     pub fn pick<'a, T>(&mut self, xs: &'a [T]) -> &'a T {
         &xs[self.below(xs.len())]
     }
     /// A uniform value in [−a, a].
     pub fn uniform(&mut self, a: f64) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 * a - a
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 * a - a
     }
 }
 
-const NAMES: [&str; 10] = [
+/// Link and joint names (each gets its index appended).
+pub const NAMES: [&str; 23] = [
     "link",
     "quote\"d",
     "back\\slash",
@@ -40,15 +54,41 @@ const NAMES: [&str; 10] = [
     "x",
     "名前",
     "tab\tchar",
+    "rlo\u{202e}evil\u{202c}",
+    "lre\u{202a}rle\u{202b}lro\u{202d}",
+    "iso\u{2066}\u{2067}\u{2068}x\u{2069}",
+    "lrm\u{200e}rlm\u{200f}alm\u{61c}",
+    "line\nfeed\rcr",
+    "nel\u{85}c1\u{9f}",
+    "zl\u{2028}zp\u{2029}",
+    "zs\u{a0}\u{3000}",
+    "cf\u{200b}\u{ad}\u{feff}\u{2060}\u{e0001}",
+    "co\u{e000}\u{10fffd}",
+    "cn\u{378}\u{fdd0}\u{1fffe}",
+    "\u{301}mn_first",
+    "star*/slash`tick",
 ];
 
-/// XML-escapes an attribute value.
+/// Odd characters for URDF file names (valid in a file name on every system): the
+/// generated table's comments name the file.
+pub const FILE_SUFFIXES: [&str; 5] = [
+    "",
+    "_\u{202e}lfru",
+    "_\u{2067}x\u{2069}",
+    "_\u{200b}\u{feff}",
+    "_名\u{2028}",
+];
+
+/// XML-escapes an attribute value (the line breaks and tab as character references, so
+/// that attribute-value normalisation keeps them).
 fn xml(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('"', "&quot;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
         .replace('\t', "&#9;")
+        .replace('\n', "&#10;")
+        .replace('\r', "&#13;")
 }
 
 /// A length: ordinary values mostly, sometimes extreme but finite ones.
@@ -114,7 +154,11 @@ pub fn robot(rng: &mut Rng, index: usize) -> (String, String, String) {
     let n = 2 + rng.below(12); // links
     let link = |i: usize, rng: &mut Rng| format!("{}{i}", rng.pick(&NAMES));
     let links: Vec<String> = (0..n).map(|i| link(i, rng)).collect();
-    let mut s = format!("<?xml version=\"1.0\"?>\n<robot name=\"random_{index}\">\n");
+    let robot = format!("random_{index}_{}", NAMES[index % NAMES.len()]);
+    let mut s = format!(
+        "<?xml version=\"1.0\"?>\n<robot name=\"{}\">\n",
+        xml(&robot)
+    );
     for l in &links {
         s += &format!("  <link name=\"{}\"/>\n", xml(l));
     }
