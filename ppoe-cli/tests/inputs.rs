@@ -4,7 +4,6 @@
 
 mod common;
 use common::*;
-use std::process::{Command, Stdio};
 
 /// `ppoe <cmd> --urdf /dev/stdin ...` with the URDF piped in: `/dev/stdin` is a pipe
 /// here, so a second read of it finds nothing.
