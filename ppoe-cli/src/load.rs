@@ -16,8 +16,11 @@ pub struct Input {
     pub bytes: Vec<u8>,
     /// The path as given, or "standard input".
     pub name: String,
-    /// The file name (no directory) for generated sources; "stdin" for standard input.
+    /// The file name (no directory) for generated sources; "stdin" for standard input,
+    /// "pipe" for a pipe or another file that is not a regular file.
     pub file_name: String,
+    /// `true` for a regular file (its name can name a table; a pipe's `63` cannot).
+    pub regular: bool,
 }
 
 /// `true` if `path` means standard input.
@@ -45,6 +48,7 @@ pub fn read(path: &Path, what: &str) -> anyhow::Result<Input> {
             bytes,
             name: "standard input".to_string(),
             file_name: "stdin".to_string(),
+            regular: false,
         });
     }
     if path.is_dir() {
@@ -60,13 +64,15 @@ pub fn read(path: &Path, what: &str) -> anyhow::Result<Input> {
             io_sentence(&e)
         )
     })?;
+    let regular = std::fs::metadata(path).is_ok_and(|m| m.is_file());
     Ok(Input {
         bytes,
         name: path.display().to_string(),
-        file_name: path
-            .file_name()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default(),
+        file_name: match path.file_name() {
+            Some(s) if regular => s.to_string_lossy().into_owned(),
+            _ => "pipe".to_string(),
+        },
+        regular,
     })
 }
 

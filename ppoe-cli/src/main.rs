@@ -467,18 +467,14 @@ fn run(cli: Cli) -> anyhow::Result<()> {
 /// `ppoe table`: the generated source on standard output.
 fn table(a: &TableArgs) -> anyhow::Result<()> {
     let robot = load::robot(&a.chain)?;
+    // The file's stem names the table; a pipe's (`/dev/fd/63`) cannot, the robot can.
+    let stem = match &a.chain.urdf.file_stem() {
+        Some(s) if robot.source.regular => s.to_string_lossy().into_owned(),
+        _ => robot.urdf.name.clone(),
+    };
     let name = match &a.name {
         Some(n) => n.clone(),
-        None if load::is_stdin(&a.chain.urdf) => {
-            ppoe_build::codegen::const_name_from(&robot.urdf.name)
-        }
-        None => ppoe_build::codegen::const_name_from(
-            &a.chain
-                .urdf
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default(),
-        ),
+        None => ppoe_build::codegen::const_name_from(&stem),
     };
     let scalar = match a.scalar {
         TableScalar::F32 => ppoe_build::Scalar::F32,

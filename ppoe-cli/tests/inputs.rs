@@ -55,6 +55,12 @@ fn urdf_from_a_pipe_is_read_once_by_every_command() {
     };
     assert!(sha(&f).is_some(), "{f}");
     assert_eq!(sha(&f), sha(&p));
+    // A pipe has no file name to name the table: the robot's name does.
+    assert!(f.contains("pub const SEED: "), "{f}");
+    assert!(
+        p.contains("pub const SEED_ARM: ") && p.contains("from `pipe`"),
+        "{p}"
+    );
     // `links` too.
     let seed = std::fs::read(urdf("seed.urdf")).unwrap();
     let o = run_bytes(&["links", "--urdf", "-"], &seed);
