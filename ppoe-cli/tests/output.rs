@@ -111,16 +111,18 @@ fn an_interrupted_write_keeps_the_previous_file() {
         let mut i = child.stdin.take().unwrap();
         i.write_all(seed_cases(60).as_bytes()).unwrap();
     }
-    // Kill the command (as Ctrl-C would) once the GIF's file is being written.
+    // Kill the command (as Ctrl-C would) once the GIF is being written: a temporary file
+    // has content, or (a writer in place) the target changed.
+    let previous = b"the previous good file".len() as u64;
     let start = Instant::now();
-    let temp = loop {
-        let found = std::fs::read_dir(&dir)
+    loop {
+        let writing = std::fs::read_dir(&dir)
             .unwrap()
             .filter_map(Result::ok)
-            .map(|e| e.path())
-            .find(|p| p.metadata().is_ok_and(|m| m.len() > 0) && p != &target);
-        if let Some(p) = found {
-            break p;
+            .any(|e| e.metadata().is_ok_and(|m| m.len() > 0) && e.path() != target);
+        let changed = std::fs::metadata(&target).map_or(true, |m| m.len() != previous);
+        if writing || changed {
+            break;
         }
         assert!(
             child.try_wait().unwrap().is_none(),
@@ -128,17 +130,17 @@ fn an_interrupted_write_keeps_the_previous_file() {
         );
         assert!(start.elapsed() < Duration::from_secs(600));
         std::thread::sleep(Duration::from_millis(2));
-    };
+    }
     child.kill().unwrap();
     child.wait().unwrap();
-    assert!(
-        temp.file_name()
-            .unwrap()
-            .to_str()
-            .unwrap()
-            .starts_with(".ppoe-tmp-"),
-        "{temp:?}"
-    );
+    // Only hidden temporaries besides the target.
+    for e in std::fs::read_dir(&dir).unwrap().filter_map(Result::ok) {
+        let name = e.file_name().into_string().unwrap();
+        assert!(
+            name == "ppoe-render.gif" || name.starts_with(".ppoe-tmp-"),
+            "{name}"
+        );
+    }
     assert_eq!(std::fs::read(&target).unwrap(), b"the previous good file");
 }
 
