@@ -3,6 +3,7 @@
 //! once and the output files checked.
 
 use crate::draw::{self, level};
+use crate::names::shown;
 use crate::picture::Frame;
 use crate::{eval, frames, load, output, ChainArgs, SurfaceArgs};
 use anyhow::{bail, Context};
@@ -61,6 +62,34 @@ pub enum Sink<'a> {
     },
 }
 
+/// Reads the URDF and the cases once and checks them and the outputs, all before any
+/// computation.
+fn prepare(
+    chain_args: &ChainArgs,
+    input: Option<&Path>,
+    grid: usize,
+    sink: &Sink<'_>,
+) -> anyhow::Result<(load::Robot, eval::Input)> {
+    load::check_one_stdin(&chain_args.urdf, input)?;
+    let robot = load::robot(chain_args)?;
+    let cases = load::cases(input)?;
+    if cases.cases.is_empty() {
+        bail!("the input has no cases");
+    }
+    eval::check_counts(&robot.chain, &cases)?;
+    let n = cases.cases.len();
+    match sink {
+        Sink::Each { dir, name, .. } => {
+            output::check_targets(dir, &(0..n).map(name).collect::<Vec<_>>())?
+        }
+        Sink::Gif { dir, name } => {
+            check_gif_memory(n, grid, robot.chain.joints.len())?;
+            output::check_targets(dir, &[name.to_string()])?
+        }
+    }
+    Ok((robot, cases))
+}
+
 /// Reads the URDF and the cases once, checks the outputs, then computes and writes each
 /// case's frame; prints `wrote <path>` for each file.
 ///
@@ -74,24 +103,8 @@ pub fn run(
     sink: &Sink<'_>,
 ) -> anyhow::Result<()> {
     let (k, label) = level(surface)?;
-    load::check_one_stdin(&chain_args.urdf, input)?;
-    let robot = load::robot(chain_args)?;
-    let cases = load::cases(input)?;
-    if cases.cases.is_empty() {
-        bail!("the input has no cases");
-    }
-    eval::check_counts(&robot.chain, &cases)?;
-    let n = cases.cases.len();
     let grid = surface.grid as usize;
-    match sink {
-        Sink::Each { dir, name, .. } => {
-            output::check_targets(dir, &(0..n).map(name).collect::<Vec<_>>())?
-        }
-        Sink::Gif { dir, name } => {
-            check_gif_memory(n, grid, robot.chain.joints.len())?;
-            output::check_targets(dir, &[name.to_string()])?
-        }
-    }
+    let (robot, cases) = prepare(chain_args, input, grid, sink)?;
     let home_frames =
         frames::joint_home_frames(&robot.urdf, &robot.chain).map_err(anyhow::Error::msg)?;
     let (joints, home) = eval::core_joints::<f64>(&robot.chain);
@@ -99,18 +112,14 @@ pub fn run(
         joints: &joints,
         home,
     };
+    let (base, tip) = (shown(&robot.chain.base), shown(&robot.chain.tip));
+    let n = cases.cases.len();
     let mut gif_frames = Vec::new();
     for (i, case) in cases.cases.iter().enumerate() {
         // Same checks and messages as `eval`.
         eval::eval_case(&chain, i, case, Convention::Right)?;
         let covs: Vec<Mat6<f64>> = case.covs.iter().map(|c| Mat6::from(*c)).collect();
-        let title = format!(
-            "{} → {}: case {}/{}",
-            crate::names::shown(&robot.chain.base),
-            crate::names::shown(&robot.chain.tip),
-            i + 1,
-            n
-        );
+        let title = format!("{base} → {tip}: case {}/{n}", i + 1);
         let frame = draw::state(
             title,
             &chain,

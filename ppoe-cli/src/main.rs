@@ -400,58 +400,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Table(a) => table(&a),
         Command::Eval(a) => eval_command(&a),
-        Command::Demo(a) => {
-            // Outputs checked before any computation; the animation's memory bounded.
-            output::check_targets(
-                &a.out,
-                &["ppoe-seed.png".to_string(), "ppoe-seed.gif".to_string()],
-            )?;
-            let joints = seed::SEED.joints.len();
-            cases::check_gif_memory(a.frames as usize, a.surface.grid as usize, joints)?;
-            draw::demo(&a.out, &a.surface, a.frames as usize)
-        }
-        Command::Render(a) => {
-            let (dir, fmt) = (a.out.as_path(), a.format);
-            let name = move |i: usize| match fmt {
-                ImageFormat::Svg => format!("ppoe-render-{i}.svg"),
-                _ => format!("ppoe-render-{i}.png"),
-            };
-            let write = move |p: &std::path::Path, f: &picture::Frame| {
-                output::write_atomic_path(p, |tmp| match fmt {
-                    ImageFormat::Svg => picture::write_svg(tmp, f),
-                    _ => picture::write_png(tmp, f),
-                })
-            };
-            let sink = match fmt {
-                ImageFormat::Gif => cases::Sink::Gif {
-                    dir,
-                    name: "ppoe-render.gif",
-                },
-                _ => cases::Sink::Each {
-                    dir,
-                    name: &name,
-                    write: &write,
-                },
-            };
-            cases::run(&a.chain, a.input.as_deref(), &a.surface, &sink)
-        }
-        Command::Mesh(a) => {
-            let fmt = a.format;
-            let name = move |i: usize| match fmt {
-                MeshFormat::Obj => format!("ppoe-mesh-{i}.obj"),
-                MeshFormat::Ply => format!("ppoe-mesh-{i}.ply"),
-            };
-            let write = move |p: &std::path::Path, f: &picture::Frame| match fmt {
-                MeshFormat::Obj => mesh::write_obj(p, f),
-                MeshFormat::Ply => mesh::write_ply(p, f),
-            };
-            let sink = cases::Sink::Each {
-                dir: &a.out,
-                name: &name,
-                write: &write,
-            };
-            cases::run(&a.chain, a.input.as_deref(), &a.surface, &sink)
-        }
+        Command::Demo(a) => demo(&a),
+        Command::Render(a) => render(&a),
+        Command::Mesh(a) => mesh_command(&a),
         Command::Links(a) => {
             let (_, urdf) = load::urdf(&a.urdf)?;
             output::print(links::tree(&urdf).as_bytes())
@@ -462,6 +413,62 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             output::print(&text)
         }
     }
+}
+
+/// `ppoe demo`: outputs checked and the animation's memory bounded before any
+/// computation.
+fn demo(a: &DemoArgs) -> anyhow::Result<()> {
+    let names = ["ppoe-seed.png", "ppoe-seed.gif"].map(String::from);
+    output::check_targets(&a.out, &names)?;
+    let joints = seed::SEED.joints.len();
+    cases::check_gif_memory(a.frames as usize, a.surface.grid as usize, joints)?;
+    draw::demo(&a.out, &a.surface, a.frames as usize)
+}
+
+/// `ppoe render`: one picture per case, or one animation.
+fn render(a: &RenderArgs) -> anyhow::Result<()> {
+    let fmt = a.format;
+    let name = move |i: usize| match fmt {
+        ImageFormat::Svg => format!("ppoe-render-{i}.svg"),
+        _ => format!("ppoe-render-{i}.png"),
+    };
+    let write = move |p: &std::path::Path, f: &picture::Frame| {
+        output::write_atomic_path(p, |tmp| match fmt {
+            ImageFormat::Svg => picture::write_svg(tmp, f),
+            _ => picture::write_png(tmp, f),
+        })
+    };
+    let sink = match fmt {
+        ImageFormat::Gif => cases::Sink::Gif {
+            dir: &a.out,
+            name: "ppoe-render.gif",
+        },
+        _ => cases::Sink::Each {
+            dir: &a.out,
+            name: &name,
+            write: &write,
+        },
+    };
+    cases::run(&a.chain, a.input.as_deref(), &a.surface, &sink)
+}
+
+/// `ppoe mesh`: one mesh file per case.
+fn mesh_command(a: &MeshArgs) -> anyhow::Result<()> {
+    let fmt = a.format;
+    let name = move |i: usize| match fmt {
+        MeshFormat::Obj => format!("ppoe-mesh-{i}.obj"),
+        MeshFormat::Ply => format!("ppoe-mesh-{i}.ply"),
+    };
+    let write = move |p: &std::path::Path, f: &picture::Frame| match fmt {
+        MeshFormat::Obj => mesh::write_obj(p, f),
+        MeshFormat::Ply => mesh::write_ply(p, f),
+    };
+    let sink = cases::Sink::Each {
+        dir: &a.out,
+        name: &name,
+        write: &write,
+    };
+    cases::run(&a.chain, a.input.as_deref(), &a.surface, &sink)
 }
 
 /// `ppoe table`: the generated source on standard output.
