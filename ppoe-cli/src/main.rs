@@ -242,6 +242,8 @@ struct DemoArgs {
     #[command(flatten)]
     surface: SurfaceArgs,
     /// The number of animation frames, 1 to 10000 (angle = 0.5·cos(2π(0.5 + step/N))).
+    /// The animation's frames are held in memory: N·grid²·24 bytes must stay under 1 GiB
+    /// (e.g. at most 278 frames at --grid 400), checked before any computation.
     #[arg(long, value_name = "N", default_value_t = 200,
           value_parser = clap::value_parser!(u32).range(1..=10000))]
     frames: u32,
@@ -261,8 +263,9 @@ struct RenderArgs {
     /// The input JSON file (the input of `ppoe eval`; default or `-`: standard input).
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
-    /// png or svg: one picture per case (ppoe-render-<i>.<ext>); gif: one animation of
-    /// all cases (ppoe-render.gif).
+    /// png or svg: one picture per case (ppoe-render-<i>.<ext>), each written as it is
+    /// computed; gif: one animation of all cases (ppoe-render.gif), whose frames are held
+    /// in memory (cases·grid²·24 bytes must stay under 1 GiB, checked up front).
     #[arg(long, value_enum, default_value_t = ImageFormat::Png)]
     format: ImageFormat,
     /// The output directory.
