@@ -21,7 +21,7 @@ use std::sync::Mutex;
 /// Set once a write to standard output found the pipe closed.
 static STDOUT_CLOSED: AtomicBool = AtomicBool::new(false);
 /// The first standard-output error other than a closed pipe, reported by `main` at exit
-/// (the [`println`] macro cannot return it).
+/// (the `println!` of this module cannot return it).
 static STDOUT_ERROR: Mutex<Option<String>> = Mutex::new(None);
 /// Makes temporary names unique within the process.
 static TEMP_COUNTER: AtomicUsize = AtomicUsize::new(0);
@@ -51,7 +51,7 @@ pub fn print(bytes: &[u8]) -> anyhow::Result<()> {
     }
 }
 
-/// [`print`] for the [`println`] macro: an error is kept for [`take_stdout_error`].
+/// [`print`] for this module's `println!`: an error is kept for [`take_stdout_error`].
 pub fn print_fmt(args: std::fmt::Arguments<'_>) {
     let mut text = args.to_string();
     text.push('\n');
@@ -61,7 +61,7 @@ pub fn print_fmt(args: std::fmt::Arguments<'_>) {
     }
 }
 
-/// The first standard-output error met by the [`println`] macro, if any.
+/// The first standard-output error met by the `println!` of this module, if any.
 pub fn take_stdout_error() -> Option<String> {
     STDOUT_ERROR
         .lock()
