@@ -51,7 +51,7 @@ pub fn print(bytes: &[u8]) -> anyhow::Result<()> {
     }
 }
 
-/// [`print`] for this module's `println!`: an error is kept for [`take_stdout_error`].
+/// [`print()`] for this module's `println!`: an error is kept for [`take_stdout_error`].
 pub fn print_fmt(args: std::fmt::Arguments<'_>) {
     let mut text = args.to_string();
     text.push('\n');
@@ -69,7 +69,7 @@ pub fn take_stdout_error() -> Option<String> {
         .take()
 }
 
-/// `println!` through [`print`]: a closed pipe is not a panic. Modules that log progress
+/// `println!` through [`print()`]: a closed pipe is not a panic. Modules that log progress
 /// lines (`use crate::output::println;`) shadow the standard macro with this one.
 macro_rules! println {
     ($($arg:tt)*) => {
