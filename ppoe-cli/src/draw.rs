@@ -2,8 +2,9 @@
 //! frames along the chain, the equiprobable surface of the tool position and the
 //! second-order mean, as a [`picture::Frame`].
 
+use crate::output::{self, println};
 use crate::picture::{self, Frame};
-use crate::{eval, seed, ChainArgs, SurfaceArg, SurfaceArgs};
+use crate::{seed, SurfaceArg, SurfaceArgs};
 use anyhow::{bail, Context};
 use ppoe::chain::{ChainRef, Convention};
 use ppoe::ellipsoid::{self, Surface};
@@ -128,50 +129,6 @@ pub fn ensure_dir(dir: &Path) -> anyhow::Result<()> {
         .with_context(|| format!("cannot create the output directory {}", dir.display()))
 }
 
-/// The frames of `render` and `mesh`: one per case of the input JSON.
-pub fn frames_for_cases(
-    chain_args: &ChainArgs,
-    input: Option<&Path>,
-    surface: &SurfaceArgs,
-) -> anyhow::Result<Vec<Frame>> {
-    let (k, label) = level(surface)?;
-    let config = chain_args.config();
-    let robot = config.chain()?;
-    let home_frames = robot.home_frames();
-    let input = eval::read_input(input)?;
-    if input.cases.is_empty() {
-        bail!("the input has no cases");
-    }
-    eval::check_counts(&robot, &input)?;
-    let (joints, home) = eval::core_joints::<f64>(&robot);
-    let chain = ChainRef {
-        joints: &joints,
-        home,
-    };
-    let n = input.cases.len();
-    let mut out = Vec::with_capacity(n);
-    for (i, case) in input.cases.iter().enumerate() {
-        // Same checks and messages as `eval`.
-        eval::eval_case(&chain, i, case, Convention::Right)?;
-        let covs: Vec<Mat6<f64>> = case.covs.iter().map(|c| Mat6::from(*c)).collect();
-        let title = format!("{} → {}: case {}/{}", robot.base, robot.tip, i + 1, n);
-        let s = state(
-            title,
-            &chain,
-            &home_frames,
-            &case.thetas,
-            &covs,
-            surface.surface,
-            k,
-            surface.grid as usize,
-            &label,
-        )
-        .with_context(|| format!("case {i}"))?;
-        out.push(s.frame);
-    }
-    Ok(out)
-}
-
 fn print_matrix<const C: usize>(title: &str, m: &[[f64; C]]) {
     println!("{title}");
     for row in m {
@@ -278,7 +235,7 @@ pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Resul
 
     ensure_dir(out)?;
     let png = out.join("ppoe-seed.png");
-    picture::write_png(&png, &initial.frame)
+    output::write_atomic_path(&png, |tmp| picture::write_png(tmp, &initial.frame))
         .with_context(|| format!("cannot write {}", png.display()))?;
 
     let mut frames = Vec::with_capacity(n_frames);
@@ -300,8 +257,10 @@ pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Resul
     let gif = out.join("ppoe-seed.gif");
     let progress = Progress::new("rendering ppoe-seed.gif", n_frames);
     progress.set(0);
-    picture::write_gif_with_progress(&gif, &frames, &mut |i| progress.set(i + 1))
-        .with_context(|| format!("cannot write {}", gif.display()))?;
+    output::write_atomic_path(&gif, |tmp| {
+        picture::write_gif_with_progress(tmp, &frames, &mut |i| progress.set(i + 1))
+    })
+    .with_context(|| format!("cannot write {}", gif.display()))?;
     progress.finish();
     println!("wrote {} (initial state)", png.display());
     println!("wrote {} ({n_frames} frames)", gif.display());

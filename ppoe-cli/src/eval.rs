@@ -2,13 +2,11 @@
 //! tool gets (`ChainRef` over the joints `ppoe-build` computes, `ppoe_checked`).
 
 use crate::EvalScalar;
-use anyhow::{bail, Context};
+use anyhow::bail;
 use ppoe::chain::{ChainRef, Convention, Joint};
 use ppoe::{Mat6, Real, Transform};
 use ppoe_build::RobotChain;
 use serde::{Deserialize, Serialize};
-use std::io::Read;
-use std::path::Path;
 
 /// The input: `{"cases":[{"thetas":[N numbers],"covs":[N 6×6 row-major]}]}`. Unknown
 /// fields (e.g. a case `label`) are ignored.
@@ -65,27 +63,19 @@ pub struct CaseOut {
     pub cov: [[f64; 6]; 6],
 }
 
-/// Reads and parses the input from `path`, or stdin for `None`.
-pub fn read_input(path: Option<&Path>) -> anyhow::Result<Input> {
-    let (text, name) = match path {
-        Some(p) => (
-            std::fs::read_to_string(p)
-                .with_context(|| format!("cannot read the input file {}", p.display()))?,
-            p.display().to_string(),
-        ),
-        None => {
-            let mut s = String::new();
-            std::io::stdin()
-                .read_to_string(&mut s)
-                .context("cannot read the input from standard input")?;
-            (s, "standard input".to_string())
-        }
-    };
-    parse_input(&text).with_context(|| format!("{name}: malformed input JSON"))
-}
-
-/// Parses the input JSON.
-pub fn parse_input(text: &str) -> anyhow::Result<Input> {
+/// Parses the input JSON from bytes: UTF-8, with or without a byte-order mark (as the
+/// URDF reader accepts).
+///
+/// # Errors
+/// Not UTF-8, or not JSON of the input's shape (the expected shape is named).
+pub fn parse_input_bytes(bytes: &[u8]) -> anyhow::Result<Input> {
+    let bytes = bytes.strip_prefix("\u{feff}".as_bytes()).unwrap_or(bytes);
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        anyhow::anyhow!(
+            "the input is not UTF-8 (invalid byte at offset {})",
+            e.valid_up_to()
+        )
+    })?;
     let input: Input = serde_json::from_str(text).map_err(|e| {
         anyhow::anyhow!(
             "{e} (expected {{\"cases\":[{{\"thetas\":[N numbers],\"covs\":[N 6×6 arrays]}}]}})"
@@ -222,11 +212,32 @@ fn eval_cases<T: Real>(
     let mut out = Vec::with_capacity(input.cases.len());
     for (i, case) in input.cases.iter().enumerate() {
         let (clipped, pose, cov) = eval_case(&chain, i, case, convention)?;
-        out.push(CaseOut {
+        let result = CaseOut {
             thetas_clipped: clipped.iter().map(|x| Real::to_f64(*x)).collect(),
             pose: pose.to_matrix4().map(|r| r.map(<T as Real>::to_f64)),
             cov: cov.0.map(|r| r.map(<T as Real>::to_f64)),
-        });
+        };
+        check_finite(i, &result)?;
+        out.push(result);
     }
     Ok(out)
+}
+
+/// JSON has no infinity or NaN (serde writes `null`, which the output uses for an infinite
+/// limit), so a non-finite result is an error rather than a silent `null`.
+fn check_finite(index: usize, r: &CaseOut) -> anyhow::Result<()> {
+    let parts: [(&str, Vec<f64>); 3] = [
+        ("the clipped joint values", r.thetas_clipped.clone()),
+        ("the pose", r.pose.iter().flatten().copied().collect()),
+        ("the covariance", r.cov.iter().flatten().copied().collect()),
+    ];
+    for (what, values) in parts {
+        if let Some(x) = values.iter().find(|x| !x.is_finite()) {
+            bail!(
+                "case {index}: {what} is not finite ({x}): the computation overflowed; \
+                 nothing is written for such a case (JSON has no infinity)"
+            );
+        }
+    }
+    Ok(())
 }

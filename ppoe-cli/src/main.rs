@@ -7,24 +7,49 @@
 //! ppoe demo  [--out DIR] [--sigma K | --probability P] [--surface lift|marginal|pytransform3d]
 //! ppoe render --urdf robot.urdf --base base_link --tip tool0 --input cases.json --format png
 //! ppoe mesh   --urdf robot.urdf --base base_link --tip tool0 --input cases.json --format obj
+//! ppoe links  --urdf robot.urdf
+//! ppoe completions bash
 //! ```
 //!
-//! Errors are reported as one line on stderr (`error: ...`) with exit status 1.
+//! Errors are reported as one line on stderr (`error: ...`); exit status 2 for a usage
+//! error, 1 for anything else (see [`EXIT_CODES`]).
 
+mod cases;
 mod draw;
 mod eval;
+mod links;
+mod load;
 mod mesh;
+mod names;
+mod output;
 mod picture;
 mod seed;
 
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::process::ExitCode;
+
+/// The exit statuses, as `--help` states them.
+const EXIT_CODES: &str = "Exit status: 0 on success (also when the reader of standard output \
+closes it early, as `ppoe eval ... | head` does); 1 when an input is unreadable or wrong, a \
+computation fails or a file cannot be written (one line on standard error, `error: ...`); 2 \
+for a usage error (unknown subcommand or flag, missing or out-of-range value). FILE \
+arguments (--urdf, --input) accept `-` for standard input and pipes such as `<(xacro \
+robot.urdf.xacro)`; each input is read once. Output files are written to a temporary file \
+and renamed, so an interrupted run never leaves a partial file under the final name.";
+
+/// The exit statuses, in short, for each subcommand's `--help`.
+const EXIT_CODES_SHORT: &str = "Exit status: 0 success; 1 bad input, failed computation or \
+write; 2 usage error. FILE may be `-` (standard input) or a pipe.";
+
+/// Exit status of a usage error (clap's convention).
+const USAGE_ERROR: u8 = 2;
 
 /// Probabilistic Product of Exponentials: robot tables from URDF, tool pose and its 6×6
 /// covariance, and pictures of the tool's uncertainty.
 #[derive(Parser, Debug)]
-#[command(name = "ppoe", version, about, long_about = None)]
+#[command(name = "ppoe", version, about, long_about = None,
+          arg_required_else_help = true, after_help = EXIT_CODES)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -34,6 +59,7 @@ struct Cli {
 enum Command {
     /// Print the Rust source of a robot table (`pub const NAME: ppoe::chain::Chain<..>`)
     /// generated from a URDF, as `ppoe-build` writes it from a build script.
+    #[command(after_help = EXIT_CODES_SHORT)]
     Table(TableArgs),
     /// Evaluate the PPOE (tool pose and 6×6 covariance) for the cases of a JSON file.
     ///
@@ -41,22 +67,48 @@ enum Command {
     /// (covariances rotation first, in the base frame, right perturbation of each joint).
     /// Output (stdout): {"chain":{"base","tip","joints","screw_axes","home","limits"},
     /// "results":[{"thetas_clipped","pose","cov"}]}; infinite limits are null.
+    #[command(after_help = EXIT_CODES_SHORT)]
     Eval(EvalArgs),
     /// The seed example: the seed robot (its table generated at build time), its initial
     /// pose and covariance, and the 200-frame animation as ppoe-seed.png and ppoe-seed.gif.
+    #[command(after_help = EXIT_CODES_SHORT)]
     Demo(DemoArgs),
     /// Draw any robot and its tool-pose distribution for the cases of a JSON file (the
     /// input of `ppoe eval`): one picture per case (png, svg) or one animation (gif).
+    #[command(after_help = EXIT_CODES_SHORT)]
     Render(RenderArgs),
     /// Write the equiprobable surface (and the skeleton as lines) of each case of a JSON
     /// file (the input of `ppoe eval`) as a mesh for Blender or MeshLab.
+    #[command(after_help = EXIT_CODES_SHORT)]
     Mesh(MeshArgs),
+    /// List the links and joints of a URDF as a tree (joint type, axis, limits), to find
+    /// the names for --base, --tip and --joints.
+    #[command(after_help = EXIT_CODES_SHORT)]
+    Links(LinksArgs),
+    /// Print a shell completion script (e.g. `ppoe completions bash >
+    /// ~/.local/share/bash-completion/completions/ppoe`).
+    #[command(after_help = EXIT_CODES_SHORT)]
+    Completions(CompletionsArgs),
+}
+
+#[derive(Args, Debug)]
+struct LinksArgs {
+    /// The URDF file (`-`: standard input).
+    #[arg(long, value_name = "FILE")]
+    urdf: PathBuf,
+}
+
+#[derive(Args, Debug)]
+struct CompletionsArgs {
+    /// The shell.
+    #[arg(value_enum)]
+    shell: clap_complete::Shell,
 }
 
 /// Which chain of which URDF.
 #[derive(Args, Debug, Clone)]
 struct ChainArgs {
-    /// The URDF file.
+    /// The URDF file (`-`: standard input).
     #[arg(long, value_name = "FILE")]
     urdf: PathBuf,
     /// The base link: screw axes and poses are expressed in its frame.
@@ -69,17 +121,6 @@ struct ChainArgs {
     /// the path; moving joints left out are frozen at 0).
     #[arg(long, value_name = "A,B,...", value_delimiter = ',')]
     joints: Option<Vec<String>>,
-}
-
-impl ChainArgs {
-    fn config(&self) -> ppoe_build::Config {
-        let mut c = ppoe_build::Config::new(&self.urdf);
-        c.base(&self.base).tip(&self.tip);
-        if let Some(j) = &self.joints {
-            c.joints(j);
-        }
-        c
-    }
 }
 
 #[derive(Args, Debug)]
@@ -144,7 +185,7 @@ struct EvalArgs {
     /// Which covariance to return.
     #[arg(long, value_enum, default_value_t = ConventionArg::Ppoe)]
     convention: ConventionArg,
-    /// The input JSON file (default: standard input).
+    /// The input JSON file (default or `-`: standard input).
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
     /// Indent the output JSON.
@@ -169,12 +210,13 @@ pub enum SurfaceArg {
 #[derive(Args, Debug, Clone)]
 #[group(multiple = false)]
 pub struct LevelArgs {
-    /// Draw the surface at K standard deviations (Mahalanobis radius in 3D; default 1).
-    #[arg(long, value_name = "K")]
+    /// Draw the surface at K standard deviations (Mahalanobis radius in 3D; a positive
+    /// finite number; default 1).
+    #[arg(long, value_name = "K", allow_negative_numbers = true, value_parser = positive_finite)]
     sigma: Option<f64>,
-    /// Draw the surface holding probability P of the tool positions (k from χ²₃, e.g.
-    /// 0.95 → k = 2.80).
-    #[arg(long, value_name = "P")]
+    /// Draw the surface holding probability P of the tool positions, 0 < P < 1 (k from
+    /// χ²₃, e.g. 0.95 → k = 2.80).
+    #[arg(long, value_name = "P", allow_negative_numbers = true, value_parser = open_unit)]
     probability: Option<f64>,
 }
 
@@ -186,7 +228,7 @@ pub struct SurfaceArgs {
     /// Which surface to draw.
     #[arg(long, value_enum, default_value_t = SurfaceArg::Lift)]
     surface: SurfaceArg,
-    /// Grid points per side of the surface.
+    /// Grid points per side of the surface (2 to 400).
     #[arg(long, default_value_t = 40, value_parser = clap::value_parser!(u16).range(2..=400))]
     grid: u16,
 }
@@ -198,7 +240,9 @@ struct DemoArgs {
     out: PathBuf,
     #[command(flatten)]
     surface: SurfaceArgs,
-    /// The number of animation frames (angle = 0.5·cos(2π(0.5 + step/N))).
+    /// The number of animation frames, 1 to 10000 (angle = 0.5·cos(2π(0.5 + step/N))).
+    /// The animation's frames are held in memory: N·grid²·24 bytes must stay under 1 GiB
+    /// (e.g. at most 278 frames at --grid 400), checked before any computation.
     #[arg(long, value_name = "N", default_value_t = 200,
           value_parser = clap::value_parser!(u32).range(1..=10000))]
     frames: u32,
@@ -215,11 +259,12 @@ enum ImageFormat {
 struct RenderArgs {
     #[command(flatten)]
     chain: ChainArgs,
-    /// The input JSON file (the input of `ppoe eval`; default: standard input).
+    /// The input JSON file (the input of `ppoe eval`; default or `-`: standard input).
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
-    /// png or svg: one picture per case (ppoe-render-<i>.<ext>); gif: one animation of
-    /// all cases (ppoe-render.gif).
+    /// png or svg: one picture per case (ppoe-render-<i>.<ext>), each written as it is
+    /// computed; gif: one animation of all cases (ppoe-render.gif), whose frames are held
+    /// in memory (cases·grid²·24 bytes must stay under 1 GiB, checked up front).
     #[arg(long, value_enum, default_value_t = ImageFormat::Png)]
     format: ImageFormat,
     /// The output directory.
@@ -239,7 +284,7 @@ enum MeshFormat {
 struct MeshArgs {
     #[command(flatten)]
     chain: ChainArgs,
-    /// The input JSON file (the input of `ppoe eval`; default: standard input).
+    /// The input JSON file (the input of `ppoe eval`; default or `-`: standard input).
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
     /// One file per case: ppoe-mesh-<i>.obj or ppoe-mesh-<i>.ply.
@@ -252,27 +297,55 @@ struct MeshArgs {
     surface: SurfaceArgs,
 }
 
+/// `--sigma`: a positive finite number (a usage error otherwise, exit status 2).
+fn positive_finite(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(k) if k.is_finite() && k > 0.0 => Ok(k),
+        Ok(_) => Err("expected a positive finite number of standard deviations".to_string()),
+        Err(e) => Err(format!("not a number ({e})")),
+    }
+}
+
+/// `--probability`: strictly between 0 and 1 (a usage error otherwise, exit status 2).
+fn open_unit(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(p) if p > 0.0 && p < 1.0 => Ok(p),
+        Ok(_) => Err("expected a probability strictly between 0 and 1".to_string()),
+        Err(e) => Err(format!("not a number ({e})")),
+    }
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        Err(e) => {
-            use clap::error::ErrorKind;
-            return match e.kind() {
-                ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
-                    let _ = e.print();
-                    ExitCode::SUCCESS
-                }
-                ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => report(
-                    "a subcommand or argument is missing (see 'ppoe --help' or \
-                     'ppoe <command> --help')",
-                ),
-                _ => report(&format!("{} (see --help)", clap_message(&e))),
-            };
-        }
+        Err(e) => return usage_error(&e),
     };
-    match run(cli) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => report(&format!("{e:#}")),
+    let result = run(cli);
+    let stdout_error = output::take_stdout_error();
+    match (result, stdout_error) {
+        (Err(e), _) => report(&format!("{e:#}")),
+        (Ok(()), Some(e)) => report(&e),
+        (Ok(()), None) => ExitCode::SUCCESS,
+    }
+}
+
+/// Help and version on standard output (status 0); a bare `ppoe` prints the help on
+/// standard error (status 2); any other usage error is one line (status 2).
+fn usage_error(e: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            let _ = e.print();
+            ExitCode::SUCCESS
+        }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            ExitCode::from(USAGE_ERROR)
+        }
+        _ => {
+            eprintln!("error: {} (see --help)", one_line(&clap_message(e)));
+            ExitCode::from(USAGE_ERROR)
+        }
     }
 }
 
@@ -291,106 +364,152 @@ fn clap_message(e: &clap::Error) -> String {
     parts.join(" ")
 }
 
-/// Prints `error: <message>` as one line on stderr; exit status 1.
-fn report(message: &str) -> ExitCode {
-    let one_line = message
+/// Messages longer than this many characters are cut (a name of megabytes must not be
+/// echoed whole).
+const MAX_MESSAGE: usize = 2000;
+
+/// A message as one safe line: lines joined with "; ", control characters escaped, cut
+/// after [`MAX_MESSAGE`] characters with the full length.
+fn one_line(message: &str) -> String {
+    let joined = message
         .lines()
         .map(str::trim)
         .filter(|l| !l.is_empty())
         .collect::<Vec<_>>()
         .join("; ");
-    eprintln!("error: {one_line}");
+    let mut out = String::new();
+    for (count, c) in joined.chars().enumerate() {
+        if count == MAX_MESSAGE {
+            out.push_str(&format!("… (message of {} bytes cut)", joined.len()));
+            break;
+        }
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// Prints `error: <message>` as one line on stderr; exit status 1.
+fn report(message: &str) -> ExitCode {
+    eprintln!("error: {}", one_line(message));
     ExitCode::FAILURE
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
-        Command::Table(a) => {
-            let mut c = a.chain.config();
-            c.scalar(match a.scalar {
-                TableScalar::F32 => ppoe_build::Scalar::F32,
-                TableScalar::F64 => ppoe_build::Scalar::F64,
-                TableScalar::Both => ppoe_build::Scalar::Both,
-            });
-            if let Some(n) = &a.name {
-                c.name(n);
-            }
-            let src = c.generate()?;
-            write_stdout(src.as_bytes())
+        Command::Table(a) => table(&a),
+        Command::Eval(a) => eval_command(&a),
+        Command::Demo(a) => demo(&a),
+        Command::Render(a) => render(&a),
+        Command::Mesh(a) => mesh_command(&a),
+        Command::Links(a) => {
+            let (_, urdf) = load::urdf(&a.urdf)?;
+            output::print(links::tree(&urdf).as_bytes())
         }
-        Command::Eval(a) => {
-            let robot = a.chain.config().chain()?;
-            let input = eval::read_input(a.input.as_deref())?;
-            let out = eval::eval(&robot, &input, a.scalar, a.convention.core())?;
-            let mut text = if a.pretty {
-                serde_json::to_string_pretty(&out)?
-            } else {
-                serde_json::to_string(&out)?
-            };
-            text.push('\n');
-            write_stdout(text.as_bytes())
-        }
-        Command::Demo(a) => draw::demo(&a.out, &a.surface, a.frames as usize),
-        Command::Render(a) => {
-            let frames = draw::frames_for_cases(&a.chain, a.input.as_deref(), &a.surface)?;
-            draw::ensure_dir(&a.out)?;
-            let mut written = Vec::new();
-            match a.format {
-                ImageFormat::Gif => {
-                    let p = a.out.join("ppoe-render.gif");
-                    picture::write_gif(&p, &frames)?;
-                    written.push(p);
-                }
-                f => {
-                    for (i, frame) in frames.iter().enumerate() {
-                        let p = if f == ImageFormat::Png {
-                            a.out.join(format!("ppoe-render-{i}.png"))
-                        } else {
-                            a.out.join(format!("ppoe-render-{i}.svg"))
-                        };
-                        if f == ImageFormat::Png {
-                            picture::write_png(&p, frame)?;
-                        } else {
-                            picture::write_svg(&p, frame)?;
-                        }
-                        written.push(p);
-                    }
-                }
-            }
-            for p in written {
-                println!("wrote {}", p.display());
-            }
-            Ok(())
-        }
-        Command::Mesh(a) => {
-            let frames = draw::frames_for_cases(&a.chain, a.input.as_deref(), &a.surface)?;
-            draw::ensure_dir(&a.out)?;
-            for (i, frame) in frames.iter().enumerate() {
-                let p = match a.format {
-                    MeshFormat::Obj => {
-                        let p = a.out.join(format!("ppoe-mesh-{i}.obj"));
-                        mesh::write_obj(&p, frame)?;
-                        p
-                    }
-                    MeshFormat::Ply => {
-                        let p = a.out.join(format!("ppoe-mesh-{i}.ply"));
-                        mesh::write_ply(&p, frame)?;
-                        p
-                    }
-                };
-                println!("wrote {}", p.display());
-            }
-            Ok(())
+        Command::Completions(a) => {
+            let mut text = Vec::new();
+            clap_complete::generate(a.shell, &mut Cli::command(), "ppoe", &mut text);
+            output::print(&text)
         }
     }
 }
 
-/// Writes to stdout; a closed pipe (`ppoe table ... | head`) is not an error.
-fn write_stdout(bytes: &[u8]) -> anyhow::Result<()> {
-    use std::io::Write;
-    let mut out = std::io::stdout().lock();
-    match out.write_all(bytes).and_then(|()| out.flush()) {
-        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-        r => Ok(r?),
-    }
+/// `ppoe demo`: outputs checked and the animation's memory bounded before any
+/// computation.
+fn demo(a: &DemoArgs) -> anyhow::Result<()> {
+    let names = ["ppoe-seed.png", "ppoe-seed.gif"].map(String::from);
+    output::check_targets(&a.out, &names)?;
+    let joints = seed::SEED.joints.len();
+    cases::check_gif_memory(a.frames as usize, a.surface.grid as usize, joints)?;
+    draw::demo(&a.out, &a.surface, a.frames as usize)
+}
+
+/// `ppoe render`: one picture per case, or one animation.
+fn render(a: &RenderArgs) -> anyhow::Result<()> {
+    let fmt = a.format;
+    let name = move |i: usize| match fmt {
+        ImageFormat::Svg => format!("ppoe-render-{i}.svg"),
+        _ => format!("ppoe-render-{i}.png"),
+    };
+    let write = move |p: &std::path::Path, f: &picture::Frame| {
+        output::write_atomic_path(p, |tmp| match fmt {
+            ImageFormat::Svg => picture::write_svg(tmp, f),
+            _ => picture::write_png(tmp, f),
+        })
+    };
+    let sink = match fmt {
+        ImageFormat::Gif => cases::Sink::Gif {
+            dir: &a.out,
+            name: "ppoe-render.gif",
+        },
+        _ => cases::Sink::Each {
+            dir: &a.out,
+            name: &name,
+            write: &write,
+        },
+    };
+    cases::run(&a.chain, a.input.as_deref(), &a.surface, &sink)
+}
+
+/// `ppoe mesh`: one mesh file per case.
+fn mesh_command(a: &MeshArgs) -> anyhow::Result<()> {
+    let fmt = a.format;
+    let name = move |i: usize| match fmt {
+        MeshFormat::Obj => format!("ppoe-mesh-{i}.obj"),
+        MeshFormat::Ply => format!("ppoe-mesh-{i}.ply"),
+    };
+    let write = move |p: &std::path::Path, f: &picture::Frame| match fmt {
+        MeshFormat::Obj => mesh::write_obj(p, f),
+        MeshFormat::Ply => mesh::write_ply(p, f),
+    };
+    let sink = cases::Sink::Each {
+        dir: &a.out,
+        name: &name,
+        write: &write,
+    };
+    cases::run(&a.chain, a.input.as_deref(), &a.surface, &sink)
+}
+
+/// `ppoe table`: the generated source on standard output.
+fn table(a: &TableArgs) -> anyhow::Result<()> {
+    let robot = load::robot(&a.chain)?;
+    // The file's stem names the table; a pipe's (`/dev/fd/63`) cannot, the robot can.
+    let stem = match &a.chain.urdf.file_stem() {
+        Some(s) if robot.source.regular => s.to_string_lossy().into_owned(),
+        _ => robot.urdf.name.clone(),
+    };
+    let name = match &a.name {
+        Some(n) => n.clone(),
+        None => ppoe_build::codegen::const_name_from(&stem),
+    };
+    let scalar = match a.scalar {
+        TableScalar::F32 => ppoe_build::Scalar::F32,
+        TableScalar::F64 => ppoe_build::Scalar::F64,
+        TableScalar::Both => ppoe_build::Scalar::Both,
+    };
+    let source = ppoe_build::Source {
+        file_name: robot.source.file_name.clone(),
+        sha256: ppoe_build::codegen::sha256_hex(&robot.source.bytes),
+    };
+    let src = ppoe_build::codegen::generate(&robot.chain, &name, scalar, &source)
+        .map_err(|e| load::in_input(&robot.source.name, &e))?;
+    output::print(src.as_bytes())
+}
+
+/// `ppoe eval`: the results as JSON on standard output.
+fn eval_command(a: &EvalArgs) -> anyhow::Result<()> {
+    load::check_one_stdin(&a.chain.urdf, a.input.as_deref())?;
+    let robot = load::robot(&a.chain)?;
+    let input = load::cases(a.input.as_deref())?;
+    let out = eval::eval(&robot.chain, &input, a.scalar, a.convention.core())?;
+    let mut text = if a.pretty {
+        serde_json::to_string_pretty(&out)?
+    } else {
+        serde_json::to_string(&out)?
+    };
+    text.push('\n');
+    output::print(text.as_bytes())
 }

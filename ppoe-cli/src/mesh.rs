@@ -9,6 +9,7 @@
 //! `edge` elements). Coordinates are metres in the robot's base frame, written with
 //! Rust's shortest round-trip formatting, so reading them back gives the same `f64`s.
 
+use crate::output;
 use crate::picture::Frame;
 use anyhow::{bail, Context};
 use std::fmt::Write as _;
@@ -166,16 +167,22 @@ fn ply_text(frame: &Frame) -> String {
     s
 }
 
-/// Writes the frame's surface (and the skeleton as lines) as a Wavefront OBJ file.
+/// Writes the frame's surface (and the skeleton as lines) as a Wavefront OBJ file,
+/// atomically (see [`output::write_atomic`]).
+///
+/// # Errors
+/// A sentence naming `path`; the previous file, if any, is left as it was.
 pub fn write_obj(path: &Path, frame: &Frame) -> anyhow::Result<()> {
-    std::fs::write(path, obj_text(frame))
-        .with_context(|| format!("cannot write {}", path.display()))
+    output::write_atomic(path, |w| w.write_all(obj_text(frame).as_bytes()))
 }
 
-/// Writes the frame's surface (and the skeleton as edges) as an ASCII PLY file.
+/// Writes the frame's surface (and the skeleton as edges) as an ASCII PLY file,
+/// atomically (see [`output::write_atomic`]).
+///
+/// # Errors
+/// A sentence naming `path`; the previous file, if any, is left as it was.
 pub fn write_ply(path: &Path, frame: &Frame) -> anyhow::Result<()> {
-    std::fs::write(path, ply_text(frame))
-        .with_context(|| format!("cannot write {}", path.display()))
+    output::write_atomic(path, |w| w.write_all(ply_text(frame).as_bytes()))
 }
 
 fn parse_xyz<'a>(

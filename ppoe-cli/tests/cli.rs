@@ -1,18 +1,14 @@
 //! End-to-end tests of the `ppoe` command.
 
 use serde_json::{json, Value};
-use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
 
-const BIN: &str = env!("CARGO_BIN_EXE_ppoe");
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
+mod common;
+use common::repo;
 
 fn seed_urdf() -> PathBuf {
-    repo().join("test_data/urdf/seed.urdf")
+    common::urdf("seed.urdf")
 }
 
 fn tmp(name: &str) -> PathBuf {
@@ -22,38 +18,12 @@ fn tmp(name: &str) -> PathBuf {
 }
 
 fn run(args: &[&str], stdin: Option<&str>) -> Output {
-    let mut child = Command::new(BIN)
-        .args(args)
-        .current_dir(repo())
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    {
-        let mut i = child.stdin.take().unwrap();
-        if let Some(s) = stdin {
-            // A command that fails before reading its input (e.g. a missing URDF) may
-            // exit first: a broken pipe here is not an error of the test.
-            match i.write_all(s.as_bytes()) {
-                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
-                r => r.unwrap(),
-            }
-        }
-    }
-    child.wait_with_output().unwrap()
+    common::run_bytes(args, stdin.unwrap_or("").as_bytes())
 }
 
-/// Asserts failure with exactly one stderr line `error: ...`; returns that line.
+/// Asserts failure (status 1) with exactly one stderr line `error: ...`; returns it.
 fn assert_one_line_error(out: &Output) -> String {
-    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(!out.status.success(), "expected failure, stderr: {stderr}");
-    assert_eq!(out.status.code(), Some(1), "stderr: {stderr}");
-    let lines: Vec<&str> = stderr.lines().collect();
-    assert_eq!(lines.len(), 1, "expected one stderr line, got: {stderr:?}");
-    assert!(lines[0].starts_with("error: "), "{stderr:?}");
-    assert!(!stderr.contains("panicked"), "{stderr:?}");
-    lines[0].to_string()
+    common::one_line_error(out, 1)
 }
 
 /// Asserts success, with standard error (after `context`) as the failure message.
@@ -391,24 +361,6 @@ fn error_malformed_urdfs() {
         if let Some(l) = e["line"].as_u64() {
             assert!(line.contains(&format!(":{l}:")), "{}: {line}", e["file"]);
         }
-    }
-}
-
-#[test]
-fn error_bad_command_lines_are_one_line() {
-    for args in [
-        vec![],
-        vec!["frobnicate"],
-        vec!["eval"],
-        vec![
-            "eval", "--urdf", "x", "--base", "a", "--tip", "b", "--scalar", "f16",
-        ],
-        vec!["demo", "--sigma", "1", "--probability", "0.5"],
-        vec!["demo", "--probability", "1.5"],
-        vec!["demo", "--sigma", "-1"],
-        vec!["demo", "--frames", "0"],
-    ] {
-        assert_one_line_error(&run(&args, None));
     }
 }
 

@@ -1,0 +1,218 @@
+//! Every byte the command writes goes through here: files are written atomically (a
+//! temporary file in the same directory, renamed over the final name once complete), and
+//! standard output tolerates a reader that went away.
+//!
+//! Atomic: an interrupted run (Ctrl-C, a full disk, an error half-way through a GIF) never
+//! leaves a truncated file under the final name, and the previous good file stays until
+//! the new one is complete. A killed run may leave its hidden temporary file
+//! (`.ppoe-tmp-<pid>-<n>-<name>`) behind; nothing else reads it.
+//!
+//! Standard output: when the reader closes the pipe (`ppoe demo | head`), further output
+//! is dropped silently and the command carries on (the files it writes are its product);
+//! `table` and `eval`, whose product *is* standard output, stop early and exit 0. Any other
+//! write error (a full disk behind `> file`) is an error naming standard output.
+
+use anyhow::{bail, Context};
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+/// Set once a write to standard output found the pipe closed.
+static STDOUT_CLOSED: AtomicBool = AtomicBool::new(false);
+/// The first standard-output error other than a closed pipe, reported by `main` at exit
+/// (the `println!` of this module cannot return it).
+static STDOUT_ERROR: Mutex<Option<String>> = Mutex::new(None);
+/// Makes temporary names unique within the process.
+static TEMP_COUNTER: AtomicUsize = AtomicUsize::new(0);
+
+/// `true` once the reader of standard output went away.
+pub fn stdout_closed() -> bool {
+    STDOUT_CLOSED.load(Ordering::Relaxed)
+}
+
+/// Writes `bytes` to standard output and flushes.
+///
+/// # Errors
+/// A write error other than a closed pipe, as a sentence naming standard output. A closed
+/// pipe is not an error: the bytes are dropped and [`stdout_closed`] turns `true`.
+pub fn print(bytes: &[u8]) -> anyhow::Result<()> {
+    if stdout_closed() {
+        return Ok(());
+    }
+    let mut out = io::stdout().lock();
+    match out.write_all(bytes).and_then(|()| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => {
+            STDOUT_CLOSED.store(true, Ordering::Relaxed);
+            Ok(())
+        }
+        Err(e) => bail!("cannot write to standard output: {}", io_sentence(&e)),
+    }
+}
+
+/// [`print()`] for this module's `println!`: an error is kept for [`take_stdout_error`].
+pub fn print_fmt(args: std::fmt::Arguments<'_>) {
+    let mut text = args.to_string();
+    text.push('\n');
+    if let Err(e) = print(text.as_bytes()) {
+        let mut slot = STDOUT_ERROR.lock().unwrap_or_else(|p| p.into_inner());
+        slot.get_or_insert_with(|| e.to_string());
+    }
+}
+
+/// The first standard-output error met by the `println!` of this module, if any.
+pub fn take_stdout_error() -> Option<String> {
+    STDOUT_ERROR
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .take()
+}
+
+/// `println!` through [`print()`]: a closed pipe is not a panic. Modules that log progress
+/// lines (`use crate::output::println;`) shadow the standard macro with this one.
+macro_rules! println {
+    ($($arg:tt)*) => {
+        $crate::output::print_fmt(format_args!($($arg)*))
+    };
+}
+pub(crate) use println;
+
+/// An I/O error as a sentence ("No such file or directory"), without the `(os error N)`
+/// suffix and never as a debug value.
+pub fn io_sentence(e: &io::Error) -> String {
+    let text = e.to_string();
+    match text.find(" (os error") {
+        Some(i) => text[..i].to_string(),
+        None => text,
+    }
+}
+
+/// The hidden temporary path next to `path`, keeping its extension (the PNG writer picks
+/// the format from it).
+fn temp_path(path: &Path) -> anyhow::Result<PathBuf> {
+    let name = path
+        .file_name()
+        .with_context(|| format!("{}: not a file name", path.display()))?;
+    let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
+    let mut temp = std::ffi::OsString::from(format!(".ppoe-tmp-{}-{n}-", std::process::id()));
+    temp.push(name);
+    Ok(path.with_file_name(temp))
+}
+
+/// Calls `write(temp)` to fill a temporary file next to `path`, then renames it to `path`.
+/// For writers that take a path (the picture encoders).
+///
+/// # Errors
+/// The writer's error, or a failure to rename, each naming `path`; the temporary file is
+/// removed and `path` is left as it was.
+pub fn write_atomic_path(
+    path: &Path,
+    write: impl FnOnce(&Path) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
+    let temp = temp_path(path)?;
+    let result = write(&temp).and_then(|()| {
+        // Data on disk before the rename makes the new name visible.
+        std::fs::File::open(&temp)
+            .and_then(|f| f.sync_all())
+            .map_err(|e| anyhow::anyhow!("cannot write {}: {}", path.display(), io_sentence(&e)))?;
+        std::fs::rename(&temp, path)
+            .map_err(|e| anyhow::anyhow!("cannot write {}: {}", path.display(), io_sentence(&e)))
+    });
+    if result.is_err() {
+        let _ = std::fs::remove_file(&temp);
+    }
+    result
+}
+
+/// Writes `path` atomically through a buffered writer given to `write`.
+///
+/// # Errors
+/// As [`write_atomic_path`]; I/O errors as sentences naming `path`.
+pub fn write_atomic(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> anyhow::Result<()> {
+    write_atomic_path(path, |temp| {
+        let sentence =
+            |e: io::Error| anyhow::anyhow!("cannot write {}: {}", path.display(), io_sentence(&e));
+        let file = std::fs::File::create(temp).map_err(sentence)?;
+        let mut w = io::BufWriter::new(file);
+        write(&mut w).and_then(|()| w.flush()).map_err(sentence)
+    })
+}
+
+/// Checks, before any computation, that the files `names` can be written in `dir`:
+/// creates `dir` if needed, checks that it is a directory, that no target is a directory,
+/// and that a file can be created there.
+///
+/// # Errors
+/// A sentence naming the directory or the file.
+pub fn check_targets(dir: &Path, names: &[String]) -> anyhow::Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        bail!("the output directory {} is not a directory", dir.display());
+    }
+    std::fs::create_dir_all(dir).map_err(|e| {
+        anyhow::anyhow!(
+            "cannot create the output directory {}: {}",
+            dir.display(),
+            io_sentence(&e)
+        )
+    })?;
+    for name in names {
+        let p = dir.join(name);
+        if p.is_dir() {
+            bail!("cannot write {}: it is a directory", p.display());
+        }
+    }
+    let probe = temp_path(&dir.join("probe"))?;
+    std::fs::File::create(&probe).map_err(|e| {
+        anyhow::anyhow!(
+            "cannot write into the output directory {}: {}",
+            dir.display(),
+            io_sentence(&e)
+        )
+    })?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dir(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("ppoe-output-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    #[test]
+    fn a_failed_write_keeps_the_previous_file_and_no_temporary() {
+        let d = dir("keep");
+        let p = d.join("a.obj");
+        write_atomic(&p, |w| w.write_all(b"good")).unwrap();
+        let r = write_atomic(&p, |w| {
+            w.write_all(b"half")?;
+            Err(io::Error::other("interrupted"))
+        });
+        assert!(r.unwrap_err().to_string().contains("a.obj"));
+        assert_eq!(std::fs::read(&p).unwrap(), b"good");
+        let names: Vec<_> = std::fs::read_dir(&d).unwrap().collect();
+        assert_eq!(names.len(), 1, "{names:?}");
+    }
+
+    #[test]
+    fn temporary_keeps_the_extension() {
+        let t = temp_path(Path::new("out/ppoe-render-0.png")).unwrap();
+        assert_eq!(t.extension().unwrap(), "png");
+        assert_eq!(t.parent().unwrap(), Path::new("out"));
+    }
+
+    #[test]
+    fn io_errors_are_sentences() {
+        let e = io::Error::from_raw_os_error(2);
+        assert_eq!(io_sentence(&e), "No such file or directory");
+    }
+}

@@ -1,0 +1,158 @@
+//! Inputs read once (issue class: inputs): a URDF or the cases from standard input (`-`)
+//! or a pipe that can be read only once, a byte-order mark in JSON, I/O errors as
+//! sentences naming the path.
+
+mod common;
+use common::*;
+
+/// `ppoe <cmd> --urdf /dev/stdin ...` with the URDF piped in: `/dev/stdin` is a pipe
+/// here, so a second read of it finds nothing.
+fn with_urdf_on_pipe(cmd: &str, urdf_arg: &str, extra: &[&str]) -> std::process::Output {
+    let seed = std::fs::read(urdf("seed.urdf")).unwrap();
+    let mut a = vec![
+        cmd,
+        "--urdf",
+        urdf_arg,
+        "--base",
+        "linkmount",
+        "--tip",
+        "tcp",
+    ];
+    a.extend_from_slice(extra);
+    run_bytes(&a, &seed)
+}
+
+#[test]
+fn urdf_from_a_pipe_is_read_once_by_every_command() {
+    let dir = fresh_dir("urdf-pipe");
+    let cases = dir.join("cases.json");
+    std::fs::write(&cases, seed_cases(2)).unwrap();
+    let (c, d) = (cases.to_str().unwrap(), dir.to_str().unwrap());
+    for urdf_arg in ["/dev/stdin", "-"] {
+        for (cmd, extra) in [
+            ("render", vec!["--input", c, "--grid", "4", "--out", d]),
+            ("mesh", vec!["--input", c, "--grid", "4", "--out", d]),
+            ("eval", vec!["--input", c]),
+            ("table", vec![]),
+        ] {
+            let o = with_urdf_on_pipe(cmd, urdf_arg, &extra);
+            success(&o);
+        }
+    }
+    assert!(dir.join("ppoe-render-1.png").is_file());
+    assert!(dir.join("ppoe-mesh-1.obj").is_file());
+    // The same table as from the file (the sha256 of the same bytes).
+    let from_file = run(&refs(&seed_args("table", &[])));
+    let from_pipe = with_urdf_on_pipe("table", "/dev/stdin", &[]);
+    let (f, p) = (
+        String::from_utf8_lossy(&from_file.stdout),
+        String::from_utf8_lossy(&from_pipe.stdout),
+    );
+    let sha = |s: &str| {
+        s.lines()
+            .find(|l| l.contains("SHA-256") || l.contains("sha256"))
+            .map(str::to_string)
+    };
+    assert!(sha(&f).is_some(), "{f}");
+    assert_eq!(sha(&f), sha(&p));
+    // A pipe has no file name to name the table: the robot's name does.
+    assert!(f.contains("pub const SEED: "), "{f}");
+    assert!(
+        p.contains("pub const SEED_ARM: ") && p.contains("from `pipe`"),
+        "{p}"
+    );
+    // `links` too.
+    let seed = std::fs::read(urdf("seed.urdf")).unwrap();
+    let o = run_bytes(&["links", "--urdf", "-"], &seed);
+    success(&o);
+    assert!(String::from_utf8_lossy(&o.stdout).starts_with("robot 'seed_arm'"));
+}
+
+#[test]
+fn cases_from_standard_input_or_dash() {
+    let input = seed_cases(1);
+    let a = run_bytes(&refs(&seed_args("eval", &[])), input.as_bytes());
+    let b = run_bytes(
+        &refs(&seed_args("eval", &["--input", "-"])),
+        input.as_bytes(),
+    );
+    success(&a);
+    assert_eq!(a.stdout, b.stdout);
+}
+
+#[test]
+fn two_inputs_on_standard_input_is_a_clear_error() {
+    let line = one_line_error(
+        &run(&["eval", "--urdf", "-", "--base", "a", "--tip", "b"]),
+        1,
+    );
+    assert!(
+        line.contains("cannot both come from standard input"),
+        "{line}"
+    );
+}
+
+#[test]
+fn a_byte_order_mark_in_json_is_accepted() {
+    let input = seed_cases(2);
+    let plain = run_bytes(&refs(&seed_args("eval", &[])), input.as_bytes());
+    let mut bom = "\u{feff}".as_bytes().to_vec();
+    bom.extend_from_slice(input.as_bytes());
+    let marked = run_bytes(&refs(&seed_args("eval", &[])), &bom);
+    success(&plain);
+    success(&marked);
+    assert_eq!(plain.stdout, marked.stdout);
+    // Not UTF-8 at all: an error with the offset, not a panic.
+    let line = one_line_error(&run_bytes(&refs(&seed_args("eval", &[])), b"{\xff}"), 1);
+    assert!(
+        line.contains("not UTF-8") && line.contains("offset 1"),
+        "{line}"
+    );
+}
+
+#[test]
+fn io_errors_are_sentences_with_the_path() {
+    let dir = fresh_dir("io-errors");
+    let d = dir.to_str().unwrap();
+    for (args, says) in [
+        (
+            vec!["links", "--urdf", "no/such.urdf"],
+            "cannot read the URDF file no/such.urdf: No such file or directory",
+        ),
+        (vec!["links", "--urdf", d], "it is a directory"),
+        (
+            vec![
+                "table",
+                "--urdf",
+                "no/such.urdf",
+                "--base",
+                "a",
+                "--tip",
+                "b",
+            ],
+            "no/such.urdf: No such",
+        ),
+    ] {
+        let line = one_line_error(&run(&args), 1);
+        assert!(line.contains(says), "{line}");
+        for debug in ["Os {", "kind:", "code:", "os error"] {
+            assert!(!line.contains(debug), "{line}");
+        }
+    }
+    let a = seed_args("eval", &["--input", "no/cases.json"]);
+    let line = one_line_error(&run(&refs(&a)), 1);
+    assert!(
+        line.contains("cannot read the input file no/cases.json: No such file or directory"),
+        "{line}"
+    );
+    // An unwritable output directory (a file in the way of its parent).
+    std::fs::write(dir.join("file"), b"x").unwrap();
+    let out = dir.join("file/sub");
+    let a = seed_args("mesh", &["--out", out.to_str().unwrap()]);
+    let line = one_line_error(&run_bytes(&refs(&a), seed_cases(1).as_bytes()), 1);
+    assert!(
+        line.contains("cannot create the output directory") && line.contains("file/sub"),
+        "{line}"
+    );
+    assert!(!line.contains("os error"), "{line}");
+}
