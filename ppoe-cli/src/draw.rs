@@ -4,6 +4,7 @@
 
 use crate::frames::{self, Mat4};
 use crate::picture::{self, Frame};
+use crate::visuals::Visuals;
 use crate::{eval, seed, ChainArgs, SurfaceArg, SurfaceArgs};
 use anyhow::{bail, Context};
 use ppoe::chain::{ChainRef, Convention};
@@ -69,6 +70,7 @@ pub fn state(
     k: f64,
     grid: usize,
     label: &str,
+    visuals: &Visuals,
 ) -> anyhow::Result<State> {
     let right = chain
         .ppoe_checked(thetas, covs, Convention::Right)
@@ -81,8 +83,11 @@ pub fn state(
     let mut frames_out = vec![frames::identity()];
     let mut points = vec![[0.0, 0.0, 0.0]];
     let mut p = Transform::identity();
+    // prefix[k] = Exp(S₁θ₁)·…·Exp(S_kθ_k): places the links below joint k.
+    let mut prefix = vec![frames::identity()];
     for ((j, theta), l) in chain.joints.iter().zip(thetas).zip(home_frames) {
         p = p * j.displacement(j.clip(*theta, false));
+        prefix.push(p.to_matrix4());
         let f = (p * Transform::from_matrix4(l)).to_matrix4();
         points.push([f[0][3], f[1][3], f[2][3]]);
         frames_out.push(f);
@@ -113,6 +118,7 @@ pub fn state(
             surface: surface_rows,
             mean2,
             sigma_label: label.to_string(),
+            bodies: visuals.place(&prefix),
         },
         pose: right.pose,
         cov_right: right.cov,
@@ -124,6 +130,30 @@ pub fn state(
 pub fn ensure_dir(dir: &Path) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir)
         .with_context(|| format!("cannot create the output directory {}", dir.display()))
+}
+
+/// The visuals of `urdf_text` (already parsed as `urdf`) for `robot`, meshes looked up
+/// beside `urdf_path`; what is skipped is noted on stderr.
+fn robot_visuals(
+    urdf_text: &[u8],
+    urdf: &ppoe_build::Urdf,
+    robot: &ppoe_build::RobotChain,
+    urdf_path: &Path,
+) -> anyhow::Result<Visuals> {
+    let text = std::str::from_utf8(urdf_text)
+        .with_context(|| format!("{} is not UTF-8", urdf_path.display()))?;
+    let (visuals, notices) = Visuals::from_urdf(
+        text,
+        urdf,
+        &robot.base,
+        &robot.joint_names(),
+        urdf_path.parent(),
+    )
+    .with_context(|| format!("{}", urdf_path.display()))?;
+    for n in notices {
+        eprintln!("note: {n}");
+    }
+    Ok(visuals)
 }
 
 /// The frames of `render` and `mesh`: one per case of the input JSON.
@@ -139,6 +169,7 @@ pub fn frames_for_cases(
         .with_context(|| format!("cannot read {}", chain_args.urdf.display()))?;
     let urdf = ppoe_build::Urdf::parse_bytes(&bytes)?;
     let home_frames = frames::joint_home_frames(&urdf, &robot).map_err(anyhow::Error::msg)?;
+    let visuals = robot_visuals(&bytes, &urdf, &robot, &chain_args.urdf)?;
     let input = eval::read_input(input)?;
     if input.cases.is_empty() {
         bail!("the input has no cases");
@@ -166,6 +197,7 @@ pub fn frames_for_cases(
             k,
             surface.grid as usize,
             &label,
+            &visuals,
         )
         .with_context(|| format!("case {i}"))?;
         out.push(s.frame);
@@ -181,21 +213,27 @@ fn print_matrix<const C: usize>(title: &str, m: &[[f64; C]]) {
     }
 }
 
-/// A progress line on stderr, redrawn in place on a terminal (silent otherwise).
+/// Progress on stderr: a bar redrawn in place on a terminal, otherwise a line at every
+/// quarter (so logs show that a long render is alive without flooding them).
 struct Progress {
     tty: bool,
     total: usize,
-    what: &'static str,
+    what: String,
 }
 
 impl Progress {
-    fn new(what: &'static str, total: usize) -> Self {
+    fn new(what: String, total: usize) -> Self {
         let tty = std::io::stderr().is_terminal();
         Self { tty, total, what }
     }
 
     fn set(&self, done: usize) {
+        let mut e = std::io::stderr().lock();
         if !self.tty {
+            let quarter = self.total.div_ceil(4).max(1);
+            if done > 0 && (done % quarter == 0 || done == self.total) {
+                let _ = writeln!(e, "{}: {done}/{} frames", self.what, self.total);
+            }
             return;
         }
         let width = 30;
@@ -203,7 +241,6 @@ impl Progress {
             .checked_div(self.total)
             .unwrap_or(width)
             .min(width);
-        let mut e = std::io::stderr().lock();
         let _ = write!(
             e,
             "\r{} [{}{}] {done}/{}",
@@ -222,25 +259,21 @@ impl Progress {
     }
 }
 
-/// `ppoe demo`: the seed example from the build-time table.
-pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Result<()> {
-    let start = Instant::now();
-    let (k, label) = level(surface)?;
-    let chain = seed::SEED.as_ref();
-    let covs = seed::covs();
-    let grid = surface.grid as usize;
+/// Writes an animated GIF with progress on stderr.
+pub fn write_gif(path: &Path, frames: &[Frame]) -> anyhow::Result<()> {
+    let name = path
+        .file_name()
+        .unwrap_or(path.as_os_str())
+        .to_string_lossy();
+    let progress = Progress::new(format!("rendering {name}"), frames.len());
+    progress.set(0);
+    picture::write_gif_with_progress(path, frames, &mut |i| progress.set(i + 1))?;
+    progress.finish();
+    Ok(())
+}
 
-    let initial = state(
-        format!("ppoe seed: frame 0/{n_frames}"),
-        &chain,
-        &seed::SEED_JOINT_FRAMES,
-        &seed::initial_thetas(),
-        &covs,
-        surface.surface,
-        k,
-        grid,
-        &label,
-    )?;
+/// The demo's report of the seed robot and its initial state on stdout.
+fn print_initial(initial: &State) {
     println!(
         "seed robot: '{}' → '{}', joints {} (table generated at build time from seed.urdf)",
         seed::SEED.base,
@@ -275,12 +308,35 @@ pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Resul
         initial.pose.translation.0[1],
         initial.pose.translation.0[2]
     );
+}
+
+/// `ppoe demo`: the seed example from the build-time table.
+pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Result<()> {
+    let start = Instant::now();
+    let (k, label) = level(surface)?;
+    let chain = seed::SEED.as_ref();
+    let covs = seed::covs();
+    let grid = surface.grid as usize;
+    let visuals = seed::visuals()?;
+
+    let initial = state(
+        format!("ppoe seed: frame 0/{n_frames}"),
+        &chain,
+        &seed::SEED_JOINT_FRAMES,
+        &seed::initial_thetas(),
+        &covs,
+        surface.surface,
+        k,
+        grid,
+        &label,
+        &visuals,
+    )?;
+    print_initial(&initial);
     println!("surface: {label}");
 
     ensure_dir(out)?;
     let png = out.join("ppoe-seed.png");
-    picture::write_png(&png, &initial.frame)
-        .with_context(|| format!("cannot write {}", png.display()))?;
+    picture::write_png(&png, &initial.frame)?;
 
     let mut frames = Vec::with_capacity(n_frames);
     for step in 0..n_frames {
@@ -294,18 +350,21 @@ pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Resul
             k,
             grid,
             &label,
+            &visuals,
         )
         .with_context(|| format!("frame {step}"))?;
         frames.push(s.frame);
     }
+    let html = out.join("ppoe-seed.html");
+    picture::write_html(&html, &frames)?;
     let gif = out.join("ppoe-seed.gif");
-    let progress = Progress::new("rendering ppoe-seed.gif", n_frames);
-    progress.set(0);
-    picture::write_gif_with_progress(&gif, &frames, &mut |i| progress.set(i + 1))
-        .with_context(|| format!("cannot write {}", gif.display()))?;
-    progress.finish();
+    write_gif(&gif, &frames)?;
     println!("wrote {} (initial state)", png.display());
     println!("wrote {} ({n_frames} frames)", gif.display());
+    println!(
+        "wrote {} (interactive view, {n_frames} frames)",
+        html.display()
+    );
     println!("done in {:.1} s", start.elapsed().as_secs_f64());
     Ok(())
 }

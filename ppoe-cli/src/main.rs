@@ -17,6 +17,7 @@ mod frames;
 mod mesh;
 mod picture;
 mod seed;
+mod visuals;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -44,10 +45,12 @@ enum Command {
     /// "results":[{"thetas_clipped","pose","cov"}]}; infinite limits are null.
     Eval(EvalArgs),
     /// The seed example: the seed robot (its table generated at build time), its initial
-    /// pose and covariance, and the 200-frame animation as ppoe-seed.png and ppoe-seed.gif.
+    /// pose and covariance, and the 200-frame animation as ppoe-seed.png, ppoe-seed.gif and
+    /// the interactive ppoe-seed.html.
     Demo(DemoArgs),
     /// Draw any robot and its tool-pose distribution for the cases of a JSON file (the
-    /// input of `ppoe eval`): one picture per case (png, svg) or one animation (gif).
+    /// input of `ppoe eval`): one picture per case (png, svg), one animation (gif) or one
+    /// interactive view (html).
     Render(RenderArgs),
     /// Write the equiprobable surface (and the skeleton as lines) of each case of a JSON
     /// file (the input of `ppoe eval`) as a mesh for Blender or MeshLab.
@@ -194,7 +197,7 @@ pub struct SurfaceArgs {
 
 #[derive(Args, Debug)]
 struct DemoArgs {
-    /// The directory to write ppoe-seed.png and ppoe-seed.gif into.
+    /// The directory to write ppoe-seed.png, ppoe-seed.gif and ppoe-seed.html into.
     #[arg(long, value_name = "DIR", default_value = ".")]
     out: PathBuf,
     #[command(flatten)]
@@ -210,6 +213,7 @@ enum ImageFormat {
     Png,
     Svg,
     Gif,
+    Html,
 }
 
 #[derive(Args, Debug)]
@@ -220,7 +224,8 @@ struct RenderArgs {
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
     /// png or svg: one picture per case (ppoe-render-<i>.<ext>); gif: one animation of
-    /// all cases (ppoe-render.gif).
+    /// all cases (ppoe-render.gif); html: one interactive view of all cases
+    /// (ppoe-render.html).
     #[arg(long, value_enum, default_value_t = ImageFormat::Png)]
     format: ImageFormat,
     /// The output directory.
@@ -339,7 +344,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             match a.format {
                 ImageFormat::Gif => {
                     let p = a.out.join("ppoe-render.gif");
-                    picture::write_gif(&p, &frames)?;
+                    draw::write_gif(&p, &frames)?;
+                    written.push(p);
+                }
+                ImageFormat::Html => {
+                    let p = a.out.join("ppoe-render.html");
+                    picture::write_html(&p, &frames)?;
                     written.push(p);
                 }
                 f => {
