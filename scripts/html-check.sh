@@ -5,6 +5,8 @@
 #     orange links and of the surface's teal;
 #  2. `ppoe render --format html` on the seed's kinematic-only URDF (no visuals): enough
 #     pixels of the grey stick figure and of the surface.
+# The demo runs its full 200 frames, so the script also checks the GIF's size budget
+# (at most 2.5 MB) in a release build.
 # Installs the Debian package `chromium` with apt-get when it is missing.
 # Usage: scripts/html-check.sh [--keep DIR]   (DIR keeps the pages and screenshots)
 set -euo pipefail
@@ -34,7 +36,13 @@ shoot() { # shoot PAGE.html OUT.png
   [[ -s "$2" ]] || { echo "html-check: no screenshot $2" >&2; return 1; }
 }
 
-"$ppoe" demo --frames 20 --out "$work/demo" >/dev/null
+"$ppoe" demo --out "$work/demo" >/dev/null
+gif_bytes="$(stat -c %s "$work/demo/ppoe-seed.gif")"
+echo "html-check: ppoe-seed.gif (200 frames) is $gif_bytes bytes"
+if (( gif_bytes > 2500000 )); then
+  echo "html-check: ppoe-seed.gif is over 2.5 MB" >&2
+  exit 1
+fi
 shoot "$work/demo/ppoe-seed.html" "$work/demo.png"
 
 printf '{"cases":[{"thetas":[-0.5,-0.5,-0.5,0,-0.5,0],"covs":[%s]}]}\n' "$(python3 - <<'PY'
