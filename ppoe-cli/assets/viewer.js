@@ -52,7 +52,7 @@
 
   function shade(c, l) {
     l = Math.max(0, Math.min(1, l));
-    const k = 0.35 + 0.65 * l, h = 70 * l * l * l * l;
+    const k = 0.45 + 0.55 * l, h = 70 * l * l * l * l;
     return c.map((x) => Math.min(255, Math.round(x * k + h)));
   }
 

@@ -48,7 +48,7 @@ fn solid_light() -> [f64; 3] {
 /// visible shape.
 pub fn shade(rgb: [u8; 3], lambert: f64) -> [u8; 3] {
     let l = lambert.clamp(0.0, 1.0);
-    let k = 0.35 + 0.65 * l;
+    let k = 0.45 + 0.55 * l;
     rgb.map(|c| (c as f64 * k + 70.0 * l.powi(4)).min(255.0) as u8)
 }
 
