@@ -177,6 +177,13 @@ fn load_mesh(path: &Path, scale: [f64; 3]) -> anyhow::Result<Shape> {
     if vertices.is_empty() || vertices.iter().flatten().any(|x| !x.is_finite()) {
         bail!("no finite vertices");
     }
+    let n = vertices.len();
+    if faces
+        .iter()
+        .any(|f: &Vec<u32>| f.len() < 3 || f.iter().any(|&i| i as usize >= n))
+    {
+        bail!("a face with a missing vertex");
+    }
     let vertices = vertices
         .into_iter()
         .map(|p| [0, 1, 2].map(|k| p[k] * scale[k]))
@@ -206,7 +213,10 @@ fn geometry(node: Node<'_, '_>, dir: Option<&Path>) -> anyhow::Result<Result<Sha
         "sphere" => Shape::sphere(num("radius")?),
         "box" => {
             let s = attr_numbers(g, "size", 3)?.ok_or_else(|| anyhow!("<box> has no size"))?;
-            Shape::cuboid([s[0].abs(), s[1].abs(), s[2].abs()])
+            if s.iter().any(|&x| x < 0.0) {
+                bail!("<box> size has a negative side");
+            }
+            Shape::cuboid([s[0], s[1], s[2]])
         }
         "mesh" => {
             let name = g.attribute("filename").unwrap_or_default();
@@ -317,5 +327,94 @@ impl Visuals {
                 })
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::picture::geom::origin as translation;
+    use ppoe::chain::Convention;
+
+    /// `<origin>` as `ppoe-build` reads it for a joint, the independent reference.
+    fn build_origin(xyz: &str, rpy: &str) -> Mat4 {
+        let text = format!(
+            r#"<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="fixed">
+               <origin xyz="{xyz}" rpy="{rpy}"/><parent link="a"/><child link="b"/></joint></robot>"#
+        );
+        Urdf::parse(&text).unwrap().joints[0].child2parent
+    }
+
+    #[test]
+    fn origins_match_ppoe_build() {
+        for (xyz, rpy) in [
+            ("0 0 0", "0 0 0"),
+            ("0.1 -0.2 0.3", "0.3 -1.2 2.5"),
+            ("1 2 3", "1.570796 0 -1.570796"),
+        ] {
+            let text = format!(r#"<origin xyz="{xyz}" rpy="{rpy}"/>"#);
+            let doc = roxmltree::Document::parse(&text).unwrap();
+            let ours = origin(Some(doc.root_element())).unwrap();
+            let want = build_origin(xyz, rpy);
+            for i in 0..4 {
+                for j in 0..4 {
+                    assert!(
+                        (ours[i][j] - want[i][j]).abs() < 1e-15,
+                        "{xyz} {rpy}: {ours:?} vs {want:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn bad_visual_numbers_are_errors() {
+        for geometry in [
+            r#"<cylinder radius="-1" length="0.1"/>"#,
+            r#"<cylinder radius="inf" length="0.1"/>"#,
+            r#"<box size="0.1 0.2"/>"#,
+            r#"<box size="0.1 -0.2 0.3"/>"#,
+            r#"<sphere/>"#,
+        ] {
+            let text = format!(
+                r#"<robot name="r"><link name="a"><visual><geometry>{geometry}</geometry></visual></link></robot>"#
+            );
+            let urdf = Urdf::parse(&text).unwrap();
+            let err = Visuals::from_urdf(&text, &urdf, "a", &[], None).unwrap_err();
+            assert!(
+                format!("{err:#}").contains("link 'a'"),
+                "{geometry}: {err:#}"
+            );
+        }
+    }
+
+    /// The seed's flange cylinder (link6, origin z 0.025) sits 0.025 m behind the tool
+    /// along the tool's z axis (the tool is link6 moved 0.05 m along z), with the tool's
+    /// orientation: checked against the core library's tool pose at the seed's frame 100.
+    #[test]
+    fn visuals_follow_the_core_forward_kinematics() {
+        let chain = crate::seed::SEED.as_ref();
+        let thetas = crate::seed::thetas_at(100, 200);
+        let covs = crate::seed::covs();
+        let pose = chain
+            .ppoe_checked(&thetas, &covs, Convention::Right)
+            .unwrap()
+            .pose
+            .to_matrix4();
+        let mut p = ppoe::Transform::identity();
+        let mut prefix = vec![IDENTITY];
+        for (j, t) in chain.joints.iter().zip(&thetas) {
+            p = p * j.displacement(j.clip(*t, false));
+            prefix.push(p.to_matrix4());
+        }
+        let bodies = crate::seed::visuals().unwrap().place(&prefix);
+        let flange = bodies.last().unwrap();
+        let o = translation(&flange.pose);
+        for k in 0..3 {
+            assert!((o[k] - (pose[k][3] - 0.025 * pose[k][2])).abs() < 1e-12);
+            for c in 0..3 {
+                assert!((flange.pose[k][c] - pose[k][c]).abs() < 1e-12);
+            }
+        }
     }
 }
