@@ -412,8 +412,8 @@ mod tests {
         let o = translation(&flange.pose);
         for k in 0..3 {
             assert!((o[k] - (pose[k][3] - 0.025 * pose[k][2])).abs() < 1e-12);
-            for c in 0..3 {
-                assert!((flange.pose[k][c] - pose[k][c]).abs() < 1e-12);
+            for (a, b) in flange.pose[k][..3].iter().zip(&pose[k][..3]) {
+                assert!((a - b).abs() < 1e-12);
             }
         }
     }
