@@ -26,13 +26,13 @@ trap 'rm -rf "$work"' EXIT
 cargo build --release -q -p ppoe-cli
 ppoe="$PWD/target/release/ppoe"
 
-shoot() { # shoot PAGE.html OUT.png
+shoot() { # shoot PAGE.html OUT.png [FRAGMENT]
   local profile
   profile="$(mktemp -d "$work/profile.XXXX")"
   timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
     --disable-background-networking --disable-component-update --disable-sync \
     --user-data-dir="$profile" --screenshot="$2" --window-size=1000,800 \
-    "file://$1#paused" >"$work/chromium.log" 2>&1 || { cat "$work/chromium.log" >&2; return 1; }
+    "file://$1#${3:-paused}" >"$work/chromium.log" 2>&1 || { cat "$work/chromium.log" >&2; return 1; }
   [[ -s "$2" ]] || { echo "html-check: no screenshot $2" >&2; return 1; }
 }
 
@@ -44,6 +44,8 @@ if (( gif_bytes > 2500000 )); then
   exit 1
 fi
 shoot "$work/demo/ppoe-seed.html" "$work/demo.png"
+# Another frame seen from another side: the camera and the frame change the picture.
+shoot "$work/demo/ppoe-seed.html" "$work/demo-turned.png" "paused&frame=100&az=140&el=35"
 
 printf '{"cases":[{"thetas":[-0.5,-0.5,-0.5,0,-0.5,0],"covs":[%s]}]}\n' "$(python3 - <<'PY'
 import json
@@ -60,10 +62,13 @@ PY
   --input "$work/cases.json" --format html --out "$work/render" >/dev/null
 shoot "$work/render/ppoe-render.html" "$work/render.png"
 
-python3 scripts/html_check.py "$work/demo.png" visuals "$work/render.png" skeleton
+python3 scripts/html_check.py "$work/demo.png" visuals "$work/demo-turned.png" visuals \
+  "$work/render.png" skeleton
+python3 scripts/html_check.py --differ "$work/demo.png" "$work/demo-turned.png"
 
 if [[ -n "$keep" ]]; then
   mkdir -p "$keep"
-  cp "$work/demo/ppoe-seed.html" "$work/demo.png" "$work/render/ppoe-render.html" "$work/render.png" "$keep/"
+  cp "$work/demo/ppoe-seed.html" "$work/demo.png" "$work/demo-turned.png" \
+    "$work/render/ppoe-render.html" "$work/render.png" "$keep/"
 fi
 echo "html-check: ok"

@@ -2,6 +2,7 @@
 """Pixel check of the HTML views' screenshots (used by scripts/html-check.sh).
 
 Usage: html_check.py SHOT.png visuals|skeleton [SHOT.png visuals|skeleton ...]
+       html_check.py --differ A.png B.png   (at least 2 % of the pixels differ)
 
 Counts pixels by colour class and fails (exit 1) unless the screenshot is not blank and
 holds enough pixels of the arm (the seed's blue and orange links, or the grey stick
@@ -71,7 +72,19 @@ def classify(px):
     return counts
 
 
+def differ(a, b):
+    wa, ha, pa = decode_png(a)
+    wb, hb, pb = decode_png(b)
+    if (wa, ha) != (wb, hb):
+        return 0
+    n = sum(1 for x, y in zip(pa, pb) if max(abs(i - j) for i, j in zip(x, y)) > 30)
+    print(f"{a} vs {b}: {n} pixels differ")
+    return 0 if n >= 0.02 * wa * ha else 1
+
+
 def main(args):
+    if args and args[0] == "--differ":
+        return differ(args[1], args[2])
     ok = True
     for path, kind in zip(args[0::2], args[1::2]):
         w, h, px = decode_png(path)

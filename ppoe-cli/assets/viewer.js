@@ -14,8 +14,13 @@
   const span = D.view.x[1] - D.view.x[0];
   const HOME = { az: 50, el: 5, zoom: 1, panX: 0, panY: 0 };
   let cam = Object.assign({}, HOME);
-  // "#paused" in the address starts on the first frame, paused (for screenshots).
-  let frame = 0, playing = D.frames.length > 1 && !location.hash.includes("paused"), last = 0;
+  // The address's fragment can set the start: "#paused&frame=10&az=140&el=30&zoom=1.5"
+  // (for screenshots and links to a view).
+  const hash = new URLSearchParams(location.hash.slice(1));
+  const num = (k, lo, hi) => { const v = parseFloat(hash.get(k)); return Number.isFinite(v) ? Math.max(lo, Math.min(hi, v)) : null; };
+  for (const [k, lo, hi] of [["az", -360, 360], ["el", -89, 89], ["zoom", 0.05, 20]]) { const v = num(k, lo, hi); if (v !== null) cam[k] = v; }
+  let frame = Math.round(num("frame", 0, D.frames.length - 1) || 0);
+  let playing = D.frames.length > 1 && !hash.has("paused"), last = 0;
 
   // Decode each frame's surface once: Int16 triples relative to the cube's centre.
   const surfaces = D.frames.map((f) => {
