@@ -167,6 +167,9 @@ fn escape(s: &str) -> String {
 
 /// The page: the frames' data as JSON inside a `<script type="application/json">` (with
 /// `<` escaped so no string can end the element), the viewer's script and its controls.
+///
+/// # Errors
+/// No frames.
 pub fn page(frames: &[Frame]) -> anyhow::Result<String> {
     let data = serde_json::to_string(&data(frames)?)?.replace('<', "\\u003c");
     let title = escape(&frames[0].title);

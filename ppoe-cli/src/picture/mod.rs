@@ -248,11 +248,17 @@ fn surface_centre(frame: &Frame) -> [f64; 3] {
 }
 
 /// Writes one frame as an 800×700 PNG image (axis ranges fitted to this frame).
+///
+/// # Errors
+/// A drawing failure, or the file cannot be written (an earlier file at `path` is kept).
 pub fn write_png(path: &Path, frame: &Frame) -> anyhow::Result<()> {
     write_png_with_view(path, frame, &View::fit(std::slice::from_ref(frame)))
 }
 
 /// Writes one frame as an 800×700 PNG image with the given view.
+///
+/// # Errors
+/// A drawing failure, or the file cannot be written (an earlier file at `path` is kept).
 pub fn write_png_with_view(path: &Path, frame: &Frame, view: &View) -> anyhow::Result<()> {
     output::atomically(path, |tmp| {
         let root = BitMapBackend::new(tmp, (view.width, view.height)).into_drawing_area();
@@ -262,6 +268,9 @@ pub fn write_png_with_view(path: &Path, frame: &Frame, view: &View) -> anyhow::R
 }
 
 /// Writes one frame as an SVG image (800×700 view box, axis ranges fitted to this frame).
+///
+/// # Errors
+/// A drawing failure, or the file cannot be written (an earlier file at `path` is kept).
 pub fn write_svg(path: &Path, frame: &Frame) -> anyhow::Result<()> {
     let view = View::fit(std::slice::from_ref(frame));
     let mut text = String::new();
@@ -281,6 +290,9 @@ pub fn write_svg(path: &Path, frame: &Frame) -> anyhow::Result<()> {
 /// Frames are drawn on all available cores and written in order with one palette for the
 /// whole animation (the drawing colours exactly, plus colours learnt from a few sample
 /// frames); after the first frame each frame holds only the rectangle that changed.
+///
+/// # Errors
+/// A drawing failure, or the file cannot be written (an earlier file at `path` is kept).
 pub fn write_gif_with_progress(
     path: &Path,
     frames: &[Frame],
@@ -290,6 +302,9 @@ pub fn write_gif_with_progress(
 }
 
 /// Writes the frames as one self-contained interactive HTML page (see [`html`]).
+///
+/// # Errors
+/// A drawing failure, or the file cannot be written (an earlier file at `path` is kept).
 pub fn write_html(path: &Path, frames: &[Frame]) -> anyhow::Result<()> {
     let page = html::page(frames)?;
     output::write_bytes(path, page.as_bytes())
