@@ -84,7 +84,7 @@ pub fn state(
     let mut points = vec![[0.0, 0.0, 0.0]];
     let mut p = Transform::identity();
     // prefix[k] = Exp(S₁θ₁)·…·Exp(S_kθ_k): places the links below joint k.
-    let mut prefix = vec![frames::identity()];
+    let mut prefix = vec![picture::geom::IDENTITY];
     for ((j, theta), l) in chain.joints.iter().zip(thetas).zip(home_frames) {
         p = p * j.displacement(j.clip(*theta, false));
         prefix.push(p.to_matrix4());
