@@ -11,7 +11,7 @@ use ppoe::chain::{ChainRef, Convention};
 use ppoe::ellipsoid::{self, Surface};
 use ppoe::{Mat6, Transform, Vec3};
 use std::io::{IsTerminal, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// The surface radius k (Mahalanobis, 3D) and a label for it.
@@ -232,7 +232,7 @@ impl Progress {
         if !self.tty {
             let quarter = self.total.div_ceil(4).max(1);
             if done > 0 && (done % quarter == 0 || done == self.total) {
-                let _ = writeln!(e, "{}: {done}/{} frames", self.what, self.total);
+                let _ = writeln!(e, "{}: {done}/{}", self.what, self.total);
             }
             return;
         }
@@ -270,6 +270,26 @@ pub fn write_gif(path: &Path, frames: &[Frame]) -> anyhow::Result<()> {
     picture::write_gif_with_progress(path, frames, &mut |i| progress.set(i + 1))?;
     progress.finish();
     Ok(())
+}
+
+/// Writes one picture per case, `ppoe-render-<i>.png` (or `.svg`) in `out`, with progress
+/// on stderr; returns the paths written.
+pub fn write_pictures(out: &Path, frames: &[Frame], svg: bool) -> anyhow::Result<Vec<PathBuf>> {
+    let ext = if svg { "svg" } else { "png" };
+    let progress = Progress::new(format!("rendering ppoe-render-*.{ext}"), frames.len());
+    let mut written = Vec::with_capacity(frames.len());
+    for (i, frame) in frames.iter().enumerate() {
+        let p = out.join(format!("ppoe-render-{i}.{ext}"));
+        if svg {
+            picture::write_svg(&p, frame)?;
+        } else {
+            picture::write_png(&p, frame)?;
+        }
+        written.push(p);
+        progress.set(i + 1);
+    }
+    progress.finish();
+    Ok(written)
 }
 
 /// The demo's report of the seed robot and its initial state on stdout.

@@ -352,21 +352,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     picture::write_html(&p, &frames)?;
                     written.push(p);
                 }
-                f => {
-                    for (i, frame) in frames.iter().enumerate() {
-                        let p = if f == ImageFormat::Png {
-                            a.out.join(format!("ppoe-render-{i}.png"))
-                        } else {
-                            a.out.join(format!("ppoe-render-{i}.svg"))
-                        };
-                        if f == ImageFormat::Png {
-                            picture::write_png(&p, frame)?;
-                        } else {
-                            picture::write_svg(&p, frame)?;
-                        }
-                        written.push(p);
-                    }
-                }
+                f => written = draw::write_pictures(&a.out, &frames, f == ImageFormat::Svg)?,
             }
             for p in written {
                 println!("wrote {}", p.display());
