@@ -60,6 +60,13 @@ pub enum Sink<'a> {
         /// The file name.
         name: &'a str,
     },
+    /// Collect every frame into one interactive HTML view at `dir/name`.
+    Html {
+        /// The output directory.
+        dir: &'a Path,
+        /// The file name.
+        name: &'a str,
+    },
 }
 
 /// Reads the URDF and the cases once and checks them and the outputs, all before any
@@ -82,7 +89,7 @@ fn prepare(
         Sink::Each { dir, name, .. } => {
             output::check_targets(dir, &(0..n).map(name).collect::<Vec<_>>())?
         }
-        Sink::Gif { dir, name } => {
+        Sink::Gif { dir, name } | Sink::Html { dir, name } => {
             check_gif_memory(n, grid, robot.chain.joints.len())?;
             output::check_targets(dir, &[name.to_string()])?
         }
@@ -106,6 +113,7 @@ pub fn run(
     let grid = surface.grid as usize;
     let (robot, cases) = prepare(chain_args, input, grid, sink)?;
     let home_frames = robot.chain.home_frames();
+    let visuals = draw::robot_visuals(&robot, &chain_args.urdf)?;
     let (joints, home) = eval::core_joints::<f64>(&robot.chain);
     let chain = ChainRef {
         joints: &joints,
@@ -129,6 +137,7 @@ pub fn run(
             k,
             grid,
             &label,
+            &visuals,
         )
         .with_context(|| format!("case {i}"))?
         .frame;
@@ -138,14 +147,19 @@ pub fn run(
                 write(&p, &frame)?;
                 output::print(format!("wrote {}\n", p.display()).as_bytes())?;
             }
-            Sink::Gif { .. } => gif_frames.push(frame),
+            Sink::Gif { .. } | Sink::Html { .. } => gif_frames.push(frame),
         }
     }
-    if let Sink::Gif { dir, name } = sink {
-        let p = dir.join(name);
-        output::write_atomic_path(&p, |tmp| crate::picture::write_gif(tmp, &gif_frames))
-            .with_context(|| format!("cannot write {}", p.display()))?;
-        output::print(format!("wrote {}\n", p.display()).as_bytes())?;
+    let (p, gif) = match sink {
+        Sink::Gif { dir, name } => (dir.join(name), true),
+        Sink::Html { dir, name } => (dir.join(name), false),
+        Sink::Each { .. } => return Ok(()),
+    };
+    if gif {
+        draw::write_gif(&p, &gif_frames)?;
+    } else {
+        crate::picture::write_html(&p, &gif_frames)?;
     }
+    output::print(format!("wrote {}\n", p.display()).as_bytes())?;
     Ok(())
 }

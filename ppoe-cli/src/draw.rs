@@ -2,8 +2,9 @@
 //! frames along the chain, the equiprobable surface of the tool position and the
 //! second-order mean, as a [`picture::Frame`].
 
-use crate::output::{self, println};
+use crate::output::println;
 use crate::picture::{self, Frame};
+use crate::visuals::Visuals;
 use crate::{seed, SurfaceArg, SurfaceArgs};
 use anyhow::{bail, Context};
 use ppoe::chain::{ChainRef, Convention};
@@ -72,6 +73,7 @@ pub fn state(
     k: f64,
     grid: usize,
     label: &str,
+    visuals: &Visuals,
 ) -> anyhow::Result<State> {
     let right = chain
         .ppoe_checked(thetas, covs, Convention::Right)
@@ -84,8 +86,11 @@ pub fn state(
     let mut frames_out = vec![Transform::<f64>::identity().to_matrix4()];
     let mut points = vec![[0.0, 0.0, 0.0]];
     let mut p = Transform::identity();
+    // prefix[k] = Exp(S₁θ₁)·…·Exp(S_kθ_k): places the links below joint k.
+    let mut prefix = vec![picture::geom::IDENTITY];
     for ((j, theta), l) in chain.joints.iter().zip(thetas).zip(home_frames) {
         p = p * j.displacement(j.clip(*theta, false));
+        prefix.push(p.to_matrix4());
         let f = (p * Transform::from_matrix4(l)).to_matrix4();
         points.push([f[0][3], f[1][3], f[2][3]]);
         frames_out.push(f);
@@ -116,6 +121,7 @@ pub fn state(
             surface: surface_rows,
             mean2,
             sigma_label: label.to_string(),
+            bodies: visuals.place(&prefix),
         },
         pose: right.pose,
         cov_right: right.cov,
@@ -129,6 +135,35 @@ pub fn ensure_dir(dir: &Path) -> anyhow::Result<()> {
         .with_context(|| format!("cannot create the output directory {}", dir.display()))
 }
 
+/// The URDF visuals of `robot` (from the bytes already read), meshes looked up beside
+/// `urdf_path` when the URDF is a regular file; what is skipped is noted on stderr.
+///
+/// # Errors
+/// The URDF is not UTF-8, or a `<visual>` element is malformed.
+pub fn robot_visuals(robot: &crate::load::Robot, urdf_path: &Path) -> anyhow::Result<Visuals> {
+    let name = &robot.source.name;
+    let text =
+        std::str::from_utf8(&robot.source.bytes).with_context(|| format!("{name} is not UTF-8"))?;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mesh_dir = if robot.source.regular {
+        urdf_path.parent()
+    } else {
+        None
+    };
+    let (visuals, notices) = Visuals::from_urdf(
+        text,
+        &robot.urdf,
+        &robot.chain.base,
+        &robot.chain.joint_names(),
+        mesh_dir,
+    )
+    .with_context(|| name.clone())?;
+    for n in notices {
+        eprintln!("note: {n}");
+    }
+    Ok(visuals)
+}
+
 fn print_matrix<const C: usize>(title: &str, m: &[[f64; C]]) {
     println!("{title}");
     for row in m {
@@ -137,21 +172,27 @@ fn print_matrix<const C: usize>(title: &str, m: &[[f64; C]]) {
     }
 }
 
-/// A progress line on stderr, redrawn in place on a terminal (silent otherwise).
+/// Progress on stderr: a bar redrawn in place on a terminal, otherwise a line at every
+/// quarter (so logs show that a long render is alive without flooding them).
 struct Progress {
     tty: bool,
     total: usize,
-    what: &'static str,
+    what: String,
 }
 
 impl Progress {
-    fn new(what: &'static str, total: usize) -> Self {
+    fn new(what: String, total: usize) -> Self {
         let tty = std::io::stderr().is_terminal();
         Self { tty, total, what }
     }
 
     fn set(&self, done: usize) {
+        let mut e = std::io::stderr().lock();
         if !self.tty {
+            let quarter = self.total.div_ceil(4).max(1);
+            if done > 0 && (done % quarter == 0 || done == self.total) {
+                let _ = writeln!(e, "{}: {done}/{}", self.what, self.total);
+            }
             return;
         }
         let width = 30;
@@ -159,7 +200,6 @@ impl Progress {
             .checked_div(self.total)
             .unwrap_or(width)
             .min(width);
-        let mut e = std::io::stderr().lock();
         let _ = write!(
             e,
             "\r{} [{}{}] {done}/{}",
@@ -178,25 +218,21 @@ impl Progress {
     }
 }
 
-/// `ppoe demo`: the seed example from the build-time table.
-pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Result<()> {
-    let start = Instant::now();
-    let (k, label) = level(surface)?;
-    let chain = seed::SEED.as_ref();
-    let covs = seed::covs();
-    let grid = surface.grid as usize;
+/// Writes an animated GIF with progress on stderr.
+pub fn write_gif(path: &Path, frames: &[Frame]) -> anyhow::Result<()> {
+    let name = path
+        .file_name()
+        .unwrap_or(path.as_os_str())
+        .to_string_lossy();
+    let progress = Progress::new(format!("rendering {name}"), frames.len());
+    progress.set(0);
+    picture::write_gif_with_progress(path, frames, &mut |i| progress.set(i + 1))?;
+    progress.finish();
+    Ok(())
+}
 
-    let initial = state(
-        format!("ppoe seed: frame 0/{n_frames}"),
-        &chain,
-        &seed::SEED_JOINT_FRAMES,
-        &seed::initial_thetas(),
-        &covs,
-        surface.surface,
-        k,
-        grid,
-        &label,
-    )?;
+/// The demo's report of the seed robot and its initial state on stdout.
+fn print_initial(initial: &State) {
     println!(
         "seed robot: '{}' → '{}', joints {} (table generated at build time from seed.urdf)",
         seed::SEED.base,
@@ -231,12 +267,35 @@ pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Resul
         initial.pose.translation.0[1],
         initial.pose.translation.0[2]
     );
+}
+
+/// `ppoe demo`: the seed example from the build-time table.
+pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Result<()> {
+    let start = Instant::now();
+    let (k, label) = level(surface)?;
+    let chain = seed::SEED.as_ref();
+    let covs = seed::covs();
+    let grid = surface.grid as usize;
+    let visuals = seed::visuals()?;
+
+    let initial = state(
+        format!("ppoe seed: frame 0/{n_frames}"),
+        &chain,
+        &seed::SEED_JOINT_FRAMES,
+        &seed::initial_thetas(),
+        &covs,
+        surface.surface,
+        k,
+        grid,
+        &label,
+        &visuals,
+    )?;
+    print_initial(&initial);
     println!("surface: {label}");
 
     ensure_dir(out)?;
     let png = out.join("ppoe-seed.png");
-    output::write_atomic_path(&png, |tmp| picture::write_png(tmp, &initial.frame))
-        .with_context(|| format!("cannot write {}", png.display()))?;
+    picture::write_png(&png, &initial.frame)?;
 
     let mut frames = Vec::with_capacity(n_frames);
     for step in 0..n_frames {
@@ -250,20 +309,21 @@ pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Resul
             k,
             grid,
             &label,
+            &visuals,
         )
         .with_context(|| format!("frame {step}"))?;
         frames.push(s.frame);
     }
+    let html = out.join("ppoe-seed.html");
+    picture::write_html(&html, &frames)?;
     let gif = out.join("ppoe-seed.gif");
-    let progress = Progress::new("rendering ppoe-seed.gif", n_frames);
-    progress.set(0);
-    output::write_atomic_path(&gif, |tmp| {
-        picture::write_gif_with_progress(tmp, &frames, &mut |i| progress.set(i + 1))
-    })
-    .with_context(|| format!("cannot write {}", gif.display()))?;
-    progress.finish();
+    write_gif(&gif, &frames)?;
     println!("wrote {} (initial state)", png.display());
     println!("wrote {} ({n_frames} frames)", gif.display());
+    println!(
+        "wrote {} (interactive view, {n_frames} frames)",
+        html.display()
+    );
     println!("done in {:.1} s", start.elapsed().as_secs_f64());
     Ok(())
 }

@@ -24,6 +24,7 @@ mod names;
 mod output;
 mod picture;
 mod seed;
+mod visuals;
 
 use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -70,11 +71,13 @@ enum Command {
     #[command(after_help = EXIT_CODES_SHORT)]
     Eval(EvalArgs),
     /// The seed example: the seed robot (its table generated at build time), its initial
-    /// pose and covariance, and the 200-frame animation as ppoe-seed.png and ppoe-seed.gif.
+    /// pose and covariance, and the 200-frame animation as ppoe-seed.png, ppoe-seed.gif and
+    /// the interactive ppoe-seed.html.
     #[command(after_help = EXIT_CODES_SHORT)]
     Demo(DemoArgs),
     /// Draw any robot and its tool-pose distribution for the cases of a JSON file (the
-    /// input of `ppoe eval`): one picture per case (png, svg) or one animation (gif).
+    /// input of `ppoe eval`): one picture per case (png, svg), one animation (gif) or one
+    /// interactive view (html).
     #[command(after_help = EXIT_CODES_SHORT)]
     Render(RenderArgs),
     /// Write the equiprobable surface (and the skeleton as lines) of each case of a JSON
@@ -235,7 +238,7 @@ pub struct SurfaceArgs {
 
 #[derive(Args, Debug)]
 struct DemoArgs {
-    /// The directory to write ppoe-seed.png and ppoe-seed.gif into.
+    /// The directory to write ppoe-seed.png, ppoe-seed.gif and ppoe-seed.html into.
     #[arg(long, value_name = "DIR", default_value = ".")]
     out: PathBuf,
     #[command(flatten)]
@@ -253,6 +256,7 @@ enum ImageFormat {
     Png,
     Svg,
     Gif,
+    Html,
 }
 
 #[derive(Args, Debug)]
@@ -263,8 +267,9 @@ struct RenderArgs {
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
     /// png or svg: one picture per case (ppoe-render-<i>.<ext>), each written as it is
-    /// computed; gif: one animation of all cases (ppoe-render.gif), whose frames are held
-    /// in memory (cases·grid²·24 bytes must stay under 1 GiB, checked up front).
+    /// computed; gif: one animation of all cases (ppoe-render.gif); html: one interactive
+    /// view of all cases (ppoe-render.html). gif and html hold their frames in memory
+    /// (cases·grid²·24 bytes must stay under 1 GiB, checked up front).
     #[arg(long, value_enum, default_value_t = ImageFormat::Png)]
     format: ImageFormat,
     /// The output directory.
@@ -420,7 +425,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
 /// `ppoe demo`: outputs checked and the animation's memory bounded before any
 /// computation.
 fn demo(a: &DemoArgs) -> anyhow::Result<()> {
-    let names = ["ppoe-seed.png", "ppoe-seed.gif"].map(String::from);
+    let names = ["ppoe-seed.png", "ppoe-seed.gif", "ppoe-seed.html"].map(String::from);
     output::check_targets(&a.out, &names)?;
     let joints = seed::SEED.joints.len();
     cases::check_gif_memory(a.frames as usize, a.surface.grid as usize, joints)?;
@@ -434,16 +439,19 @@ fn render(a: &RenderArgs) -> anyhow::Result<()> {
         ImageFormat::Svg => format!("ppoe-render-{i}.svg"),
         _ => format!("ppoe-render-{i}.png"),
     };
-    let write = move |p: &std::path::Path, f: &picture::Frame| {
-        output::write_atomic_path(p, |tmp| match fmt {
-            ImageFormat::Svg => picture::write_svg(tmp, f),
-            _ => picture::write_png(tmp, f),
-        })
+    // The picture writers write atomically themselves.
+    let write = move |p: &std::path::Path, f: &picture::Frame| match fmt {
+        ImageFormat::Svg => picture::write_svg(p, f),
+        _ => picture::write_png(p, f),
     };
     let sink = match fmt {
         ImageFormat::Gif => cases::Sink::Gif {
             dir: &a.out,
             name: "ppoe-render.gif",
+        },
+        ImageFormat::Html => cases::Sink::Html {
+            dir: &a.out,
+            name: "ppoe-render.html",
         },
         _ => cases::Sink::Each {
             dir: &a.out,

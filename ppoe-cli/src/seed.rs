@@ -2,10 +2,27 @@
 //! `ppoe-build` on `test_data/urdf/seed.urdf`, base `linkmount`, tip `tcp`): no URDF is
 //! parsed at run time. Also the seed's joint values and covariances (MATH.md §5.3).
 
+use crate::visuals::Visuals;
 use ppoe::Mat6;
 
 include!(concat!(env!("OUT_DIR"), "/seed_table.rs"));
 include!(concat!(env!("OUT_DIR"), "/seed_frames.rs"));
+
+/// The seed robot with its visual geometry (blue, orange and black cylinders, as the seed
+/// example draws it): `test_data/urdf/seed_visuals.urdf`, same chain as `seed.urdf`.
+pub const VISUALS_URDF: &str = include_str!("../../test_data/urdf/seed_visuals.urdf");
+
+/// The seed robot's visuals, for the demo's pictures.
+///
+/// # Errors
+/// Only if the embedded file were malformed (a test parses it).
+pub fn visuals() -> anyhow::Result<Visuals> {
+    let urdf = ppoe_build::Urdf::parse(VISUALS_URDF)?;
+    let names: Vec<&str> = SEED.joints.iter().map(|j| j.name).collect();
+    let (v, notices) = Visuals::from_urdf(VISUALS_URDF, &urdf, SEED.base, &names, None)?;
+    anyhow::ensure!(notices.is_empty(), "seed visuals: {}", notices.join("; "));
+    Ok(v)
+}
 
 /// The seed's joint direction `thetas = [1, 1, 1, 0, 1, 0]`; its initial state is
 /// `-0.5·thetas` and frame `step` of the animation is `angle(step)·thetas`.
@@ -82,6 +99,24 @@ mod tests {
                 assert!((vk - j.screw.0[3 + k]).abs() < 1e-12, "{}", j.name);
             }
         }
+    }
+
+    #[test]
+    fn visuals_file_has_the_seed_chain_and_eight_visuals() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../test_data/urdf/");
+        let vis = ppoe_build::Config::new(format!("{dir}seed_visuals.urdf"))
+            .base("linkmount")
+            .tip("tcp")
+            .chain()
+            .unwrap();
+        let rt = runtime_chain();
+        assert_eq!(vis.joints, rt.joints);
+        assert_eq!(vis.home, rt.home);
+        let v = visuals().unwrap();
+        let bodies = v.place(&[crate::picture::geom::IDENTITY; 7]);
+        // link1, link4, link6: one cylinder each; link2, link5: hub and segment; link3: hub.
+        assert_eq!(bodies.len(), 8);
+        assert_eq!(VISUALS_URDF.matches("<visual>").count(), 8);
     }
 
     #[test]

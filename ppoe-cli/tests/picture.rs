@@ -1,0 +1,263 @@
+//! The pictures end to end through the `ppoe` binary: the demo's PNG shows the seed's
+//! URDF visuals in their material colours, its GIF is small, its HTML view is
+//! self-contained; `render --format html` works for robots without visuals; primitive
+//! and mesh visuals of any URDF are drawn, missing meshes skipped with a notice.
+//!
+//! Expected colours come from the URDFs' `<material>` values, not from the drawing code.
+
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const BIN: &str = env!("CARGO_BIN_EXE_ppoe");
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("ppoe-picture-tests")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn run(args: &[&str]) -> Output {
+    let out = Command::new(BIN)
+        .args(args)
+        .current_dir(repo())
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "ppoe {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+fn decode_png(path: &Path) -> Vec<[u8; 3]> {
+    let decoder = png::Decoder::new(std::fs::File::open(path).unwrap());
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    buf.truncate(info.buffer_size());
+    buf.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+}
+
+/// Pixels whose colour is the material colour `rgb` under some shading: the same hue
+/// (channel ratios within 15 %) and not near white or black.
+fn shaded_count(px: &[[u8; 3]], rgb: [f64; 3]) -> usize {
+    let m = rgb.iter().cloned().fold(0.0, f64::max);
+    px.iter()
+        .filter(|p| {
+            let pm = p.iter().map(|&c| c as f64).fold(0.0, f64::max);
+            pm >= 60.0
+                && (0..3).all(|k| (p[k] as f64 / pm - rgb[k] / m).abs() < 0.15)
+                && p.iter().map(|&c| c as u32).sum::<u32>() < 3 * 250
+        })
+        .count()
+}
+
+/// The JSON data inside a page written by `--format html`.
+fn page_data(html: &str) -> Value {
+    let start = html
+        .find(r#"<script id="ppoe-data" type="application/json">"#)
+        .unwrap();
+    let rest = &html[start..];
+    let body = &rest[rest.find('>').unwrap() + 1..rest.find("</script>").unwrap()];
+    serde_json::from_str(body).unwrap()
+}
+
+/// A page that needs no network: no remote address, no external script, style or image.
+fn assert_self_contained(html: &str) {
+    for bad in [
+        "http://",
+        "https://",
+        "<script src",
+        "<link",
+        "<img",
+        "@import",
+    ] {
+        assert!(!html.contains(bad), "the page contains {bad}");
+    }
+}
+
+#[test]
+fn demo_draws_the_seed_visuals_and_writes_a_small_gif_and_a_page() {
+    let dir = tmp("demo");
+    let out = run(&["demo", "--frames", "20", "--out", dir.to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("ppoe-seed.html"), "{stdout}");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("20/20"));
+
+    // seed_visuals.urdf: arm_blue 0.2 0.2 1.0, joint_orange 1.0 0.5 0.0.
+    let px = decode_png(&dir.join("ppoe-seed.png"));
+    let blue = shaded_count(&px, [0.2, 0.2, 1.0]);
+    let orange = shaded_count(&px, [1.0, 0.5, 0.0]);
+    assert!(blue > 3000 && orange > 1000, "blue {blue}, orange {orange}");
+
+    // 200 frames must fit in 2.5 MB: 20 frames (one full, 19 differences) in a tenth.
+    let gif = std::fs::metadata(dir.join("ppoe-seed.gif")).unwrap().len();
+    assert!(gif <= 250_000, "{gif} bytes for 20 frames");
+
+    let html = std::fs::read_to_string(dir.join("ppoe-seed.html")).unwrap();
+    assert_self_contained(&html);
+    let data = page_data(&html);
+    let frames = data["frames"].as_array().unwrap();
+    assert_eq!(frames.len(), 20);
+    assert!(data["label"].as_str().unwrap().contains("19.9 %"));
+    let shapes = data["shapes"].as_array().unwrap();
+    assert!(!shapes.is_empty());
+    for f in frames {
+        let bodies = f["bodies"].as_array().unwrap();
+        assert_eq!(bodies.len(), 8, "one body per <visual>");
+        for b in bodies {
+            let rgb = b["rgb"].clone();
+            assert!(
+                [json!([51, 51, 255]), json!([255, 128, 0]), json!([0, 0, 0])].contains(&rgb),
+                "{rgb}"
+            );
+        }
+    }
+}
+
+fn zero_cases(n_joints: usize, n_cases: usize) -> String {
+    let mut cov = vec![vec![0.0; 6]; 6];
+    cov[2][2] = 0.02;
+    cov[3][3] = 1e-4;
+    let cases: Vec<Value> = (0..n_cases)
+        .map(|c| json!({"thetas": vec![0.1 * c as f64; n_joints], "covs": vec![cov.clone(); n_joints]}))
+        .collect();
+    json!({ "cases": cases }).to_string()
+}
+
+#[test]
+fn render_html_works_for_robots_without_visuals() {
+    for (urdf, base, tip, n) in [
+        ("prismatic.urdf", "base_link", "tool0", 7),
+        ("tree.urdf", "base_footprint", "left_tip", 6),
+    ] {
+        let dir = tmp(&format!("render-{urdf}"));
+        let input = dir.join("cases.json");
+        std::fs::write(&input, zero_cases(n, 3)).unwrap();
+        let path = format!("test_data/urdf/{urdf}");
+        let args = [
+            "render",
+            "--urdf",
+            &path,
+            "--base",
+            base,
+            "--tip",
+            tip,
+            "--input",
+            input.to_str().unwrap(),
+            "--format",
+            "html",
+            "--out",
+            dir.to_str().unwrap(),
+        ];
+        run(&args);
+        let html = std::fs::read_to_string(dir.join("ppoe-render.html")).unwrap();
+        assert_self_contained(&html);
+        let data = page_data(&html);
+        let frames = data["frames"].as_array().unwrap();
+        assert_eq!(frames.len(), 3, "{urdf}");
+        for f in frames {
+            assert!(f["bodies"].as_array().unwrap().is_empty(), "{urdf}");
+            // The stick figure: base, every moving joint, tool.
+            assert_eq!(f["joints"].as_array().unwrap().len(), n + 2, "{urdf}");
+        }
+    }
+}
+
+/// A binary STL of a tetrahedron with a 0.2 m base and 0.3 m height.
+fn tetrahedron_stl() -> Vec<u8> {
+    let v = [
+        [0.0f32, 0.0, 0.0],
+        [0.2, 0.0, 0.0],
+        [0.0, 0.2, 0.0],
+        [0.05, 0.05, 0.3],
+    ];
+    let faces = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]];
+    let mut out = vec![0u8; 80];
+    out.extend_from_slice(&(faces.len() as u32).to_le_bytes());
+    for f in faces {
+        out.extend_from_slice(&[0u8; 12]);
+        for i in f {
+            for c in v[i] {
+                out.extend_from_slice(&c.to_le_bytes());
+            }
+        }
+        out.extend_from_slice(&[0u8; 2]);
+    }
+    out
+}
+
+const VISUAL_URDF: &str = r#"<?xml version="1.0"?>
+<robot name="shapes">
+  <material name="magenta"><color rgba="1 0 1 1"/></material>
+  <link name="base">
+    <visual><origin xyz="0 0 0.05"/><geometry><box size="0.3 0.3 0.1"/></geometry>
+      <material name="magenta"/></visual>
+  </link>
+  <link name="arm">
+    <visual><origin xyz="0 0 0.25"/><geometry><sphere radius="0.08"/></geometry>
+      <material><color rgba="0 0.8 0 1"/></material></visual>
+    <visual><origin xyz="0.1 0 0.4"/><geometry><mesh filename="package://shapes/meshes/tetra.stl"/></geometry>
+      <material><color rgba="1 1 0 1"/></material></visual>
+    <visual><geometry><mesh filename="meshes/missing.stl"/></geometry></visual>
+    <visual><geometry><mesh filename="meshes/tetra.dae"/></geometry></visual>
+  </link>
+  <link name="tool"/>
+  <joint name="yaw" type="revolute">
+    <origin xyz="0 0 0.1"/><parent link="base"/><child link="arm"/>
+    <axis xyz="0 0 1"/><limit lower="-3" upper="3"/>
+  </joint>
+  <joint name="mount" type="fixed">
+    <origin xyz="0.3 0 0.6"/><parent link="arm"/><child link="tool"/>
+  </joint>
+</robot>
+"#;
+
+#[test]
+fn primitives_and_meshes_are_drawn_and_missing_meshes_noted() {
+    let dir = tmp("shapes");
+    std::fs::create_dir_all(dir.join("meshes")).unwrap();
+    std::fs::write(dir.join("meshes/tetra.stl"), tetrahedron_stl()).unwrap();
+    std::fs::write(dir.join("meshes/tetra.dae"), "<COLLADA/>").unwrap();
+    let urdf = dir.join("shapes.urdf");
+    std::fs::write(&urdf, VISUAL_URDF).unwrap();
+    let input = dir.join("cases.json");
+    std::fs::write(&input, zero_cases(1, 1)).unwrap();
+    let out = run(&[
+        "render",
+        "--urdf",
+        urdf.to_str().unwrap(),
+        "--base",
+        "base",
+        "--tip",
+        "tool",
+        "--input",
+        input.to_str().unwrap(),
+        "--format",
+        "png",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("missing.stl' not found"), "{stderr}");
+    assert!(stderr.contains("tetra.dae"), "{stderr}");
+    let px = decode_png(&dir.join("ppoe-render-0.png"));
+    for (name, rgb, min) in [
+        ("box", [1.0, 0.0, 1.0], 2000),
+        ("sphere", [0.0, 0.8, 0.0], 1000),
+        ("mesh", [1.0, 1.0, 0.0], 500),
+    ] {
+        let n = shaded_count(&px, rgb);
+        assert!(n >= min, "{name}: {n} pixels");
+    }
+}
