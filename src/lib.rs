@@ -37,10 +37,13 @@
 pub mod chain;
 pub mod ellipsoid;
 pub mod error;
+mod joint;
 pub mod linalg;
+mod ppoe;
 pub mod scalar;
 pub mod se3;
 pub mod so3;
+mod transport;
 pub mod uncertainty;
 
 pub use error::Error;

@@ -11,14 +11,6 @@ use core::fmt::{Debug, Display};
 use core::ops::{AddAssign, DivAssign, MulAssign, SubAssign};
 use num_traits::{Float, FloatConst};
 
-/// Whether the target has 128-bit SIMD registers for floats (see
-/// [`Real::TRANSPORT_LANES`]).
-const SIMD128: bool = cfg!(any(
-    target_feature = "sse2",
-    target_feature = "neon",
-    target_feature = "simd128"
-));
-
 mod sealed {
     pub trait Sealed {}
     impl Sealed for f32 {}
@@ -72,15 +64,6 @@ pub trait Real:
     /// positive semi-definiteness of covariances, orthonormality of rotations.
     const TOL: Self;
 
-    /// How many independent covariance transports the PPOE computes side by side, one per
-    /// SIMD lane: 2 where the target has 128-bit vectors (SSE2, NEON, wasm simd128), else 1
-    /// (Cortex-M: scalar FPU). Only the instruction schedule depends on it; each
-    /// transport's operations are the same. f32 uses 2 lanes too, not the 4 a register
-    /// holds: 4 lanes were slower on x86-64, on the seed robot and on the synthetic chains,
-    /// each time they were tried (gathering four transports' values into lanes, and four
-    /// joints' work in flight, cost more than the halved arithmetic saves).
-    const TRANSPORT_LANES: usize;
-
     /// Converts an `f64` constant to this type (rounding to nearest for `f32`).
     fn lit(x: f64) -> Self;
 
@@ -108,7 +91,6 @@ impl Real for f64 {
     const SERIES: f64 = 1.220_703_125e-4; // 2^-13 ≈ eps^(1/4) = 1.22e-4
     const NEAR_PI: f64 = 1e-6; // eps^(1/3) = 6.1e-6; pytransform3d's value, same order
     const TOL: f64 = 1.490_116_119_384_765_6e-8; // sqrt(eps) = 2^-26
-    const TRANSPORT_LANES: usize = if SIMD128 { 2 } else { 1 };
 
     #[inline]
     fn lit(x: f64) -> f64 {
@@ -154,7 +136,6 @@ impl Real for f32 {
     const SERIES: f32 = 0.015_625; // 2^-6 ≈ eps^(1/4) = 1.86e-2
     const NEAR_PI: f32 = 5e-3; // eps^(1/3) = 4.9e-3
     const TOL: f32 = 3.452_669_8e-4; // sqrt(eps) = 2^-11.5
-    const TRANSPORT_LANES: usize = if SIMD128 { 2 } else { 1 };
 
     #[inline]
     fn lit(x: f64) -> f32 {

@@ -44,7 +44,7 @@
 
 mod common;
 use common::*;
-use ppoe::chain::{screw_noise, ChainRef, Convention, Joint};
+use ppoe::chain::{screw_noise, ChainView, Convention, Joint};
 use ppoe::ellipsoid::{chi2_3_probability, unit_sphere_point, LiftSurface};
 use ppoe::{se3, Mat3, Mat6, Matrix, Transform, Vec3, Vector};
 use rand::{Rng, SeedableRng};
@@ -342,7 +342,7 @@ fn golden_chain(file: &str) -> (Vec<Joint<f64>>, Transform<f64>, serde_json::Val
 
 /// Tool positions of `N_SAMPLES` draws of the model `T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M`.
 fn sample_tool_positions(
-    chain: &ChainRef<f64>,
+    chain: &ChainView<f64>,
     thetas: &[f64],
     covs: &[Mat6<f64>],
     seed: u64,
@@ -356,7 +356,7 @@ fn sample_tool_positions(
 /// Samples one case, checks the coverage at k = 1, 2, 3 and returns the fractions.
 fn check_case(
     name: &str,
-    chain: &ChainRef<f64>,
+    chain: &ChainView<f64>,
     thetas: &[f64],
     covs: &[Mat6<f64>],
     seed: u64,
@@ -544,7 +544,7 @@ fn winding_number_on_unit_sphere_mesh() {
 #[test]
 fn lift_coordinate_inverts_the_surface_map() {
     let (joints, home, _) = golden_chain("ppoe/seed_linkmount_tcp.json");
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };
@@ -566,7 +566,7 @@ fn lift_coordinate_inverts_the_surface_map() {
 #[test]
 fn lift_surface_coverage_seed_robot_frame_0() {
     let (joints, home, _) = golden_chain("ppoe/seed_linkmount_tcp.json");
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };
@@ -576,7 +576,7 @@ fn lift_surface_coverage_seed_robot_frame_0() {
 #[test]
 fn lift_surface_coverage_seed_robot_frame_100() {
     let (joints, home, _) = golden_chain("ppoe/seed_linkmount_tcp.json");
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };
@@ -595,7 +595,7 @@ fn lift_surface_coverage_seed_robot_frame_100() {
 #[test]
 fn lift_surface_coverage_rpy_everywhere() {
     let (joints, home, g) = golden_chain("ppoe/rpy_everywhere_base_tool.json");
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };

@@ -10,7 +10,7 @@
 
 mod common;
 use common::*;
-use ppoe::chain::{ChainRef, Convention};
+use ppoe::chain::{ChainView, Convention};
 use ppoe::uncertainty::check_covariance;
 use ppoe::{Mat6, Real, Vec6, Vector};
 
@@ -29,9 +29,9 @@ fn run<T: Real>(bound: f64, file: &str, prepared: bool) {
     let (mut joints, home) = chain_from_golden::<T>(&g);
     if prepared {
         joints = joints.into_iter().map(|j| j.prepared()).collect();
-        assert!(joints.iter().any(|j| j.constants.is_some()));
+        assert!(joints.iter().any(|j| j.constants().is_some()));
     }
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };

@@ -5,7 +5,7 @@
 
 mod common;
 use common::*;
-use ppoe::chain::{ChainRef, Convention};
+use ppoe::chain::{ChainView, Convention};
 use ppoe::uncertainty;
 use ppoe::{se3, Mat6, Transform, Vec3, Vec6, Vector};
 use rand::SeedableRng;
@@ -62,7 +62,7 @@ fn concat_locally_matches_sampling() {
 
 /// Samples the PPOE model and returns the right perturbations η = Log(T̄⁻¹·T).
 fn sample_chain(
-    chain: &ChainRef<f64>,
+    chain: &ChainView<f64>,
     thetas: &[f64],
     covs: &[Mat6<f64>],
     seed: u64,
@@ -86,7 +86,7 @@ fn frame(k: usize) -> Vec<f64> {
 #[test]
 fn ppoe_right_convention_matches_sampling_on_seed_robot() {
     let (joints, home) = seed_chain();
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };
@@ -116,7 +116,7 @@ fn ppoe_right_convention_matches_sampling_on_seed_robot() {
 #[test]
 fn fourth_order_ppoe_is_closer_at_large_noise() {
     let (joints, home) = seed_chain();
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };
@@ -144,7 +144,7 @@ fn fourth_order_ppoe_is_closer_at_large_noise() {
 #[test]
 fn second_order_mean_of_tool_position() {
     let (joints, home) = seed_chain();
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };

@@ -2,7 +2,7 @@
 
 use crate::*;
 use arbitrary::Arbitrary;
-use ppoe::chain::{ChainRef, Convention, Joint, JointKind};
+use ppoe::chain::{ChainView, Convention, Joint, JointKind};
 use ppoe::ellipsoid::SymmetricEigen;
 use ppoe::uncertainty::{self, check_covariance, IterationOptions, Order};
 use ppoe::{se3, Error};
@@ -230,7 +230,7 @@ pub fn run<T: Fz>(inp: &CoreInput) {
     }
     let home: Transform<T> = inp.home.get();
     chain_valid &= transform_valid(&home);
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints[..n],
         home,
     };

@@ -325,7 +325,7 @@ pub struct ChainModel {
 impl ChainModel {
     /// `sampler` is [`Gaussian6::new`] or [`Gaussian6::box_muller`].
     pub fn new(
-        chain: &ppoe::chain::ChainRef<f64>,
+        chain: &ppoe::chain::ChainView<f64>,
         thetas: &[f64],
         covs: &[Mat6<f64>],
         sampler: fn(&Mat6<f64>) -> Gaussian6,
@@ -353,7 +353,7 @@ impl ChainModel {
 /// `n` draws of the PPOE model `T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M`, ξᵢ ~ N(0, covsᵢ), with a
 /// fixed seed.
 pub fn sample_chain_poses(
-    chain: &ppoe::chain::ChainRef<f64>,
+    chain: &ppoe::chain::ChainView<f64>,
     thetas: &[f64],
     covs: &[Mat6<f64>],
     seed: u64,
