@@ -314,7 +314,7 @@ fn item(
     let core_joint = |j: &crate::chain::ChainJoint| -> ([f64; 6], Option<Constants>) {
         let raw = Joint::new("", j.kind, j.screw, j.lower, j.upper);
         fn parts<T: ppoe::Real>(j: &Joint<T>) -> ([f64; 6], Option<Constants>) {
-            let k = j.constants.map(|k| {
+            let k = j.constants().map(|k| {
                 let a = |v: [T; 3]| v.map(<T as ppoe::Real>::to_f64);
                 (
                     <T as ppoe::Real>::to_f64(k.scale),
