@@ -6,7 +6,7 @@ mod baseline_nalgebra;
 
 use criterion::{criterion_group, BenchmarkId, Criterion};
 use ppoe::chain::{ChainView, Convention, Joint, JointKind};
-use ppoe::ellipsoid::{self, Surface};
+use ppoe::surface::{self, Surface};
 use ppoe::uncertainty::{self, IterationOptions, Order};
 use ppoe::{se3, so3, Mat6, Matrix, Real, Transform, Vec3, Vector};
 use serde_json::Value;
@@ -292,7 +292,7 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
         ] {
             c.bench_function(&format!("surface_{name}_n{n}/{t}"), |b| {
                 b.iter(|| {
-                    ellipsoid::surface_grid(s, black_box(&tip.pose), &tip.cov, T::ONE, n, &mut buf)
+                    surface::surface_grid(s, black_box(&tip.pose), &tip.cov, T::ONE, n, &mut buf)
                 })
             });
         }
@@ -435,7 +435,7 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
         ] {
             let mut buf = vec![Vec3::<T>::zeros(); 2500];
             v.push(op(format!("surface_{name}_n{n}/{t}"), move || {
-                ellipsoid::surface_grid(s, black_box(&tip.pose), &tip.cov, T::ONE, n, &mut buf)
+                surface::surface_grid(s, black_box(&tip.pose), &tip.cov, T::ONE, n, &mut buf)
                     .is_ok()
             }));
         }

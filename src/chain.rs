@@ -1,9 +1,8 @@
 //! Kinematic chains: the joints from a base link to a tip link and the home pose of the
-//! tip; rigid forward kinematics, Jacobians and the checks of the chain itself. The PPOE
-//! of a chain (its methods `ppoe`, `ppoe_checked`, `ppoe_fourth_order`, and
-//! [`Convention`], [`UncertainPose`]) and the joint model ([`Joint`], [`JointKind`],
-//! [`JointConstants`], [`screw_noise`], [`bending_noise`]) are documented here too: their
-//! paths `ppoe::chain::…` are the public ones.
+//! tip; rigid forward kinematics, Jacobians, the checks of the chain itself, and the PPOE
+//! (the methods `ppoe`, `ppoe_checked` and `ppoe_fourth_order` of [`Chain`] and
+//! [`ChainView`], with [`Convention`] and [`UncertainPose`]). The joint model is in
+//! [`crate::joint`], re-exported here under its first paths (`ppoe::chain::Joint`, …).
 
 use crate::error::Error;
 use crate::linalg::{Matrix, Vec6};

@@ -15,8 +15,9 @@ use crate::uncertainty::{check_covariance, concat_globally, Order};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Convention {
     /// Right (local) perturbation of the returned pose: `T = T̄·Exp(η)`, η ~ N(0, Σ),
-    /// η in the tip frame. `Σ = Ad(M⁻¹)·C·Ad(M⁻¹)ᵀ`. The default: Monte Carlo puts it
-    /// within 1.4–5.6 % of the true distribution at the seed's noise (MATH.md §8).
+    /// η in the tip frame. `Σ = Ad(M⁻¹)·C·Ad(M⁻¹)ᵀ`. The default: the covariance of the
+    /// sampled perturbation to second order (Monte Carlo: within a few % at the seed
+    /// robot's noise, `tests/monte_carlo.rs`; by noise level in ACCURACY.md).
     #[default]
     Right,
     /// Left (global) perturbation: `T = Exp(η)·T̄`, η in the base frame,
@@ -25,8 +26,8 @@ pub enum Convention {
     Left,
     /// pytransform3d's example, reproduced exactly: `Ad(M)·C·Ad(M)ᵀ` in the last step,
     /// and continuous joints clipped to their stated limits. For migration and
-    /// comparison only: it is the covariance of neither perturbation (164 % median error
-    /// on the seed robot, MATH.md §8).
+    /// comparison only: it is the covariance of neither perturbation (Monte Carlo: more
+    /// than 30 % off on the seed robot, `tests/monte_carlo.rs`).
     Pytransform3d,
 }
 
@@ -121,7 +122,7 @@ impl<'a, T: Real> ChainView<'a, T> {
     /// square of the lever arms: the output may then fail [`check_covariance`] although
     /// it is the exact propagation of the input (found by fuzzing: an f32 input with
     /// λ_min = −4·10⁻⁵·‖Σ‖ gave −6·10⁻⁴·λ_max, the same in f64). Give PSD inputs, e.g. from
-    /// [`screw_noise`], [`bending_noise`] or a factor `L·Lᵀ`.
+    /// [`screw_noise`](crate::joint::screw_noise), [`bending_noise`](crate::joint::bending_noise) or a factor `L·Lᵀ`.
     pub fn ppoe_checked(
         &self,
         thetas: &[T],
@@ -142,7 +143,8 @@ impl<'a, T: Real> ChainView<'a, T> {
     /// ([`concat_globally`] with [`Order::Fourth`]) applied once per joint in the global
     /// form, factor i = `(Dᵢ, Ad(Dᵢ)·covsᵢ·Ad(Dᵢ)ᵀ)`, then converted to `convention`
     /// (Right or Left; Pytransform3d is treated as Right). Closer to Monte Carlo at large
-    /// noise (MATH.md §8); about 4× the cost of [`ChainView::ppoe`]. Unchecked.
+    /// noise (ACCURACY.md, section 1); about 4× the cost of [`ChainView::ppoe`].
+    /// Unchecked.
     pub fn ppoe_fourth_order(
         &self,
         thetas: &[T],

@@ -386,8 +386,8 @@ pub fn log<T: Real>(t: &Transform<T>) -> Vec6<T> {
 
 /// The coefficients m₂, m₃, m₄ of the Q block (Barfoot's "Q" of the SE(3) Jacobian),
 /// with pytransform3d's Horner polynomials below 0.5 (precision-independent: their
-/// truncation error is < 10⁻¹⁶ there). Out of line: inlined into [`q_matrix`] it made
-/// `se3::left_jacobian` in f32 25 % slower (measured on x86-64).
+/// truncation error is < 10⁻¹⁶ there). Out of line: inlined into [`q_matrix`], both
+/// branches' code made `se3::left_jacobian` slower in f32 (register pressure).
 #[inline(never)]
 fn q_coefficients<T: Real>(ph: T) -> (T, T, T) {
     let p2 = ph * ph;
@@ -423,8 +423,8 @@ fn q_coefficients<T: Real>(ph: T) -> (T, T, T) {
 /// The Q block of the SE(3) left Jacobian, `J₆ = [[J, 0], [Q, J]]`, for ξ = (φ, ρ)
 /// (Barfoot, *State Estimation for Robotics*, eq. 7.86b).
 ///
-/// Matches pytransform3d's internal Q (MATH.md §2.6), including its polynomial branch
-/// below ‖φ‖ = 0.5.
+/// Matches pytransform3d's internal Q (the one its `left_jacobian_SE3_inv` and
+/// `pose_fusion` use), including its Horner-polynomial branch below ‖φ‖ = 0.5.
 pub fn q_matrix<T: Real>(xi: &Vec6<T>) -> Mat3<T> {
     let phi = xi.rotation();
     let p = so3::hat(&phi);

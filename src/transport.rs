@@ -243,11 +243,8 @@ impl<T: Real> Congruence<T> {
 
     /// W congruences side by side: adds the lower triangle of congruence k applied to
     /// covariance k to lane k of `acc`. The same operations on [`Pack`] lanes, which the
-    /// optimiser maps to SIMD where the target has it (SSE2, NEON): the PPOE's transports
-    /// are independent of each other, so packing them needs no shuffle inside the
-    /// transport. Every pack is built whole from its W lanes (no zeroed buffer filled lane
-    /// by lane: that compiled to a `memset` call and scalar stores that the vector loads
-    /// then waited on).
+    /// optimiser maps to SIMD where the target has it. Every pack is built whole from its
+    /// W lanes (see the module doc).
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // a gather: lane k of every element, by index
     pub(crate) fn add_lower_packed<const W: usize>(

@@ -45,7 +45,7 @@
 mod common;
 use common::*;
 use ppoe::chain::{screw_noise, ChainView, Convention, Joint};
-use ppoe::ellipsoid::{chi2_3_probability, unit_sphere_point, LiftSurface};
+use ppoe::surface::{chi2_3_probability, unit_sphere_point, LiftSurface};
 use ppoe::{se3, Mat3, Mat6, Matrix, Transform, Vec3, Vector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -121,7 +121,7 @@ fn solid_angle(rel: &[(P3, f64)], t: &[u32; 3]) -> f64 {
 
 impl Mesh {
     /// The closed mesh of a row-major `n × n` unit-sphere grid (the layout of
-    /// `lift_surface`, see the `ellipsoid` module docs): rows i = φ from the north pole
+    /// `lift_surface`, see the `surface` module docs): rows i = φ from the north pole
     /// (i = 0) to the south pole (i = n − 1), columns j = θ with column n − 1 repeating
     /// column 0. Each quad `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` gives the triangles
     /// `(a, b, c)` and `(a, c, d)`; on the unit sphere `∂u/∂φ × ∂u/∂θ = u`, so they face

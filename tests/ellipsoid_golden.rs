@@ -1,4 +1,4 @@
-//! Golden tests of `ppoe::ellipsoid` against pytransform3d 3.17.0
+//! Golden tests of `ppoe::surface` against pytransform3d 3.17.0
 //! (`test_data/golden/core/to_ellipsoid.json`, `to_projected_ellipsoid.json`; layout in
 //! `test_data/golden/README.md`).
 //!
@@ -17,9 +17,8 @@
 //! eigen-solver is checked separately (values, reconstruction, and — where the top
 //! eigenvalues are well separated — the full pipeline after aligning eigenvector signs).
 
-use ppoe::ellipsoid::{
-    to_ellipsoid, to_projected_ellipsoid, to_projected_ellipsoid_from_eigen, SymmetricEigen,
-};
+use ppoe::linalg::SymmetricEigen;
+use ppoe::surface::{to_ellipsoid, to_projected_ellipsoid, to_projected_ellipsoid_from_eigen};
 use ppoe::{Mat3, Mat6, Matrix, Real, Transform, Vec3, Vec6, Vector};
 use serde_json::Value;
 

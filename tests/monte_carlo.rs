@@ -157,7 +157,7 @@ fn second_order_mean_of_tool_position() {
         mean += (tip.pose * se3::exp(eta)).translation;
     }
     mean = mean.scale(1.0 / etas.len() as f64);
-    let predicted = ppoe::ellipsoid::position_mean_second_order(&tip.pose, &tip.cov);
+    let predicted = ppoe::surface::position_mean_second_order(&tip.pose, &tip.cov);
     let shift = (mean - tip.pose.translation).norm();
     let miss = (mean - predicted).norm();
     // Standard error of the sampled mean: √(tr Cov(position) / N).
