@@ -50,12 +50,12 @@ use crate::se3::{self, Transform};
 
 /// Checks the grid arguments and returns the number of points, `n_steps²`.
 ///
-/// Errors: [`Error::TooFewSamples`] for `n_steps < 2` (the grid needs both poles),
+/// Errors: [`Error::GridSize`] for `n_steps < 2` (the grid needs both poles),
 /// [`Error::BufferTooSmall`] if `len < n_steps²` (or `n_steps²` overflows `usize`).
 #[inline]
 fn grid_len(n_steps: usize, len: usize) -> Result<usize, Error> {
     if n_steps < 2 {
-        return Err(Error::TooFewSamples);
+        return Err(Error::GridSize);
     }
     match n_steps.checked_mul(n_steps) {
         Some(n) if n <= len => Ok(n),
@@ -212,7 +212,7 @@ pub fn to_ellipsoid<T: Real>(
 /// perturbation (its rounding enters sin/cos), observed 1.0·10⁻⁶. With our own eigen
 /// basis add the eigenvector error `ε·‖Σ‖/gap` times r.
 ///
-/// Errors: [`Error::NonFinite`] (any input), [`Error::TooFewSamples`] for
+/// Errors: [`Error::NonFinite`] (any input), [`Error::GridSize`] for
 /// `n_steps < 2`, [`Error::BufferTooSmall`] if `out.len() < n_steps²`.
 pub fn to_projected_ellipsoid<T: Real>(
     mean: &Transform<T>,
@@ -406,7 +406,7 @@ impl<T: Real> LiftSurface<T> {
     /// points, see the [module docs](self)): `out[i·n + j] = point(k·u(i, j))`. Returns
     /// the number of points written.
     ///
-    /// Errors: [`Error::NonFinite`] for non-finite k, [`Error::TooFewSamples`] for
+    /// Errors: [`Error::NonFinite`] for non-finite k, [`Error::GridSize`] for
     /// `n_steps < 2`, [`Error::BufferTooSmall`] if `out.len() < n_steps²`.
     pub fn grid(&self, k: T, n_steps: usize, out: &mut [Vec3<T>]) -> Result<usize, Error> {
         if !k.is_finite() {

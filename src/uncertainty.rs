@@ -223,7 +223,8 @@ fn fusion_terms<T: Real>(
 /// inverse information matrix at the returned mean (pytransform3d evaluates it one
 /// update earlier; at convergence they agree).
 ///
-/// Errors: [`Error::Empty`] for no poses or `means.len() != covs.len()`,
+/// Errors: [`Error::LengthMismatch`] if `means.len() != covs.len()`, [`Error::Empty`]
+/// for no poses,
 /// [`Error::NonFinite`], [`Error::NotARotation`] ([`Transform::check`]),
 /// [`Error::NotSymmetric`] / [`Error::NotPositiveSemidefinite`] ([`check_covariance`]),
 /// [`Error::Singular`] if a covariance or the information matrix is not positive
@@ -235,7 +236,10 @@ pub fn pose_fusion<T: Real>(
     options: &IterationOptions<T>,
 ) -> Result<Fusion<T>, Error> {
     const MAX_POSES: usize = 16;
-    if means.is_empty() || means.len() != covs.len() {
+    if means.len() != covs.len() {
+        return Err(Error::LengthMismatch);
+    }
+    if means.is_empty() {
         return Err(Error::Empty);
     }
     if means.len() > MAX_POSES {

@@ -462,3 +462,22 @@ fn extreme_but_finite_inputs_give_finite_results() {
         assert!(so3::left_jacobian_inv(&xi.rotation()).is_finite() || t > 1e38);
     }
 }
+
+/// Mismatched lengths are `LengthMismatch`, no poses `Empty`, for pose fusion.
+#[test]
+fn pose_fusion_length_errors() {
+    let opts = uncertainty::IterationOptions::default();
+    let means = [Transform::<f64>::identity(); 2];
+    let covs = [Mat6::<f64>::identity(); 3];
+    for (m, c) in [(&means[..], &covs[..1]), (&means[..], &covs[..]), (&[][..], &covs[..1])] {
+        assert_eq!(
+            uncertainty::pose_fusion(m, c, &opts).err(),
+            Some(Error::LengthMismatch)
+        );
+    }
+    assert_eq!(
+        uncertainty::pose_fusion::<f64>(&[], &[], &opts).err(),
+        Some(Error::Empty)
+    );
+    assert!(uncertainty::pose_fusion(&means, &covs[..2], &opts).is_ok());
+}

@@ -892,3 +892,21 @@ fn grid_matches_unit_sphere_point() {
     check::<f32>();
     check::<f64>();
 }
+
+/// Every surface function: fewer than 2 grid steps is `GridSize`, a buffer below n² points
+/// `BufferTooSmall`; both checked before the covariance is looked at.
+#[test]
+fn grid_arguments_are_checked() {
+    let mean = Transform::<f64>::identity();
+    let cov = Mat6::<f64>::identity() * 1e-4;
+    let mut buf = [Vec3::<f64>::zeros(); 9];
+    for s in [Surface::Lift, Surface::Marginal, Surface::Pytransform3d] {
+        for n in [0, 1] {
+            let r = surface_grid(s, &mean, &cov, 1.0, n, &mut buf);
+            assert_eq!(r, Err(ppoe::Error::GridSize), "{s:?} n_steps = {n}");
+        }
+        let r = surface_grid(s, &mean, &cov, 1.0, 4, &mut buf);
+        assert_eq!(r, Err(ppoe::Error::BufferTooSmall), "{s:?}");
+        assert_eq!(surface_grid(s, &mean, &cov, 1.0, 3, &mut buf), Ok(9), "{s:?}");
+    }
+}

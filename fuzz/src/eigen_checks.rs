@@ -121,7 +121,7 @@ pub fn run<T: Fz>(inp: &EigenInput) {
             assert!(r.is_err(), "{what} ({}): Ok for bad arguments", T::NAME);
         }
         if inputs_finite && n_steps < 2 {
-            assert_eq!(r, Err(Error::TooFewSamples), "{what} ({})", T::NAME);
+            assert_eq!(r, Err(Error::GridSize), "{what} ({})", T::NAME);
         } else if inputs_finite && needed > buf.len() {
             assert_eq!(r, Err(Error::BufferTooSmall), "{what} ({})", T::NAME);
         } else if grid_ok && !inputs_finite {
