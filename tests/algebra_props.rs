@@ -469,7 +469,11 @@ fn pose_fusion_length_errors() {
     let opts = uncertainty::IterationOptions::default();
     let means = [Transform::<f64>::identity(); 2];
     let covs = [Mat6::<f64>::identity(); 3];
-    for (m, c) in [(&means[..], &covs[..1]), (&means[..], &covs[..]), (&[][..], &covs[..1])] {
+    for (m, c) in [
+        (&means[..], &covs[..1]),
+        (&means[..], &covs[..]),
+        (&[][..], &covs[..1]),
+    ] {
         assert_eq!(
             uncertainty::pose_fusion(m, c, &opts).err(),
             Some(Error::LengthMismatch)

@@ -907,6 +907,10 @@ fn grid_arguments_are_checked() {
         }
         let r = surface_grid(s, &mean, &cov, 1.0, 4, &mut buf);
         assert_eq!(r, Err(ppoe::Error::BufferTooSmall), "{s:?}");
-        assert_eq!(surface_grid(s, &mean, &cov, 1.0, 3, &mut buf), Ok(9), "{s:?}");
+        assert_eq!(
+            surface_grid(s, &mean, &cov, 1.0, 3, &mut buf),
+            Ok(9),
+            "{s:?}"
+        );
     }
 }
