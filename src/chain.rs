@@ -64,6 +64,10 @@ pub struct ChainView<'a, T> {
 
 impl<'a, T: Real> ChainView<'a, T> {
     /// Clips joint values to the limits into `out` (see [`Joint::clip`]).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::LengthMismatch`] unless `thetas` and `out` have one element per joint.
     pub fn clip(&self, thetas: &[T], out: &mut [T], clip_continuous: bool) -> Result<(), Error> {
         if thetas.len() != self.joints.len() || out.len() != self.joints.len() {
             return Err(Error::LengthMismatch);
@@ -74,7 +78,12 @@ impl<'a, T: Real> ChainView<'a, T> {
         Ok(())
     }
 
-    /// Rigid forward kinematics `Exp(S₁θ₁)·…·Exp(Sₙθₙ)·M` after clipping θ to the limits.
+    /// Rigid forward kinematics `Exp(S₁θ₁)·…·Exp(Sₙθₙ)·M` (tip to base) after clipping θ
+    /// to the limits.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::LengthMismatch`] unless `thetas` have one element per joint.
     pub fn forward_kinematics(&self, thetas: &[T]) -> Result<Transform<T>, Error> {
         if thetas.len() != self.joints.len() {
             return Err(Error::LengthMismatch);
@@ -88,6 +97,10 @@ impl<'a, T: Real> ChainView<'a, T> {
 
     /// Space Jacobian (columns `Ad(D₁…Dᵢ₋₁)·Sᵢ`, twists in the base frame, rotation
     /// first) at the clipped θ, written into `out` (one column per joint).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::LengthMismatch`] unless `thetas` and `out` have one element per joint.
     pub fn space_jacobian(&self, thetas: &[T], out: &mut [Vec6<T>]) -> Result<(), Error> {
         if thetas.len() != self.joints.len() || out.len() != self.joints.len() {
             return Err(Error::LengthMismatch);
@@ -102,6 +115,10 @@ impl<'a, T: Real> ChainView<'a, T> {
 
     /// Body Jacobian (columns `Ad(T(θ)⁻¹)·Jₛ,ᵢ`, twists in the tip frame, rotation first)
     /// at the clipped θ, written into `out`.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::LengthMismatch`] unless `thetas` and `out` have one element per joint.
     pub fn body_jacobian(&self, thetas: &[T], out: &mut [Vec6<T>]) -> Result<(), Error> {
         self.space_jacobian(thetas, out)?;
         let ad = self.forward_kinematics(thetas)?.inverse().adjoint();
@@ -115,6 +132,13 @@ impl<'a, T: Real> ChainView<'a, T> {
     /// zero rotation and unit translation part (prismatic) within [`Real::TOL`], limits not
     /// NaN, displacement constants (where given) those of the screw within [`Real::TOL`],
     /// and a valid home pose ([`Transform::check`]).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] for a non-finite screw or NaN limit, [`Error::ZeroAxis`] for a
+    /// screw axis that is not unit length, [`Error::InconsistentConstants`] for
+    /// displacement constants that are not those of the screw, and the errors of
+    /// [`Transform::check`] for the home pose.
     pub fn check(&self) -> Result<(), Error> {
         self.home.check()?;
         for j in self.joints {

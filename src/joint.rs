@@ -125,7 +125,11 @@ impl<T: Real> JointConstants<T> {
     /// `Exp(S·θ)` (no clipping): `R = I + sin t·[ŵ]× + (1 − cos t)·[ŵ]×²` (Rodrigues) and
     /// `p = sin t·v̂ + (1 − cos t)·ŵ×v̂ + (t − sin t)·(ŵ·v̂)·ŵ` with t = θ·‖ω‖ (Lynch &
     /// Park, *Modern Robotics*, §3.3.3, with `ŵ×(ŵ×v̂) = (ŵ·v̂)ŵ − v̂` folded in): no
-    /// division by t, so no series branch. Accuracy: a few ε absolute in R and
+    /// division by t, so no series branch.
+    ///
+    /// # Accuracy
+    ///
+    /// A few ε absolute in R and
     /// ε·‖v̂‖·max(1, |t|) in p, like [`se3::exp`].
     #[inline(always)]
     pub fn displacement(&self, theta: T) -> Transform<T> {

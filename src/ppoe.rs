@@ -69,6 +69,10 @@ impl<'a, T: Real> ChainView<'a, T> {
     /// Only one triangle is accumulated; the result is exactly symmetric. Non-finite or
     /// non-PSD inputs give meaningless (possibly NaN) output but never panic; see
     /// [`ChainView::ppoe_checked`].
+    ///
+    /// # Errors
+    ///
+    /// [`Error::LengthMismatch`] unless `thetas` and `covs` have one element per joint.
     pub fn ppoe(
         &self,
         thetas: &[T],
@@ -91,7 +95,7 @@ impl<'a, T: Real> ChainView<'a, T> {
     ///
     /// # Errors
     ///
-    /// [`Error::LengthMismatch`] as [`ChainView::ppoe`].
+    /// As [`ChainView::ppoe`].
     #[doc(hidden)]
     pub fn ppoe_with_lanes(
         &self,
@@ -122,7 +126,13 @@ impl<'a, T: Real> ChainView<'a, T> {
     /// square of the lever arms: the output may then fail [`check_covariance`] although
     /// it is the exact propagation of the input (found by fuzzing: an f32 input with
     /// λ_min = −4·10⁻⁵·‖Σ‖ gave −6·10⁻⁴·λ_max, the same in f64). Give PSD inputs, e.g. from
-    /// [`screw_noise`](crate::joint::screw_noise), [`bending_noise`](crate::joint::bending_noise) or a factor `L·Lᵀ`.
+    /// [`screw_noise`](crate::joint::screw_noise),
+    /// [`bending_noise`](crate::joint::bending_noise) or a factor `L·Lᵀ`.
+    ///
+    /// # Errors
+    ///
+    /// Those of [`ChainView::check`] for the chain, [`Error::NonFinite`] for a non-finite
+    /// θ, those of [`check_covariance`] for a covariance, then those of [`ChainView::ppoe`].
     pub fn ppoe_checked(
         &self,
         thetas: &[T],
@@ -145,6 +155,10 @@ impl<'a, T: Real> ChainView<'a, T> {
     /// (Right or Left; Pytransform3d is treated as Right). Closer to Monte Carlo at large
     /// noise (ACCURACY.md, section 1); about 4× the cost of [`ChainView::ppoe`].
     /// Unchecked.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::LengthMismatch`] unless `thetas` and `covs` have one element per joint.
     pub fn ppoe_fourth_order(
         &self,
         thetas: &[T],
@@ -200,6 +214,10 @@ impl<T: Real, const N: usize> Chain<T, N> {
     }
 
     /// The PPOE with input checks (see [`ChainView::ppoe_checked`]).
+    ///
+    /// # Errors
+    ///
+    /// As [`ChainView::ppoe_checked`] (the lengths always match).
     pub fn ppoe_checked(
         &self,
         thetas: &[T; N],

@@ -50,7 +50,9 @@ use crate::se3::{self, Transform};
 
 /// Checks the grid arguments and returns the number of points, `n_steps²`.
 ///
-/// Errors: [`Error::GridSize`] for `n_steps < 2` (the grid needs both poles),
+/// # Errors
+///
+/// [`Error::GridSize`] for `n_steps < 2` (the grid needs both poles),
 /// [`Error::BufferTooSmall`] if `len < n_steps²` (or `n_steps²` overflows `usize`).
 #[inline]
 fn grid_len(n_steps: usize, len: usize) -> Result<usize, Error> {
@@ -149,11 +151,17 @@ fn fill_grid<T: Real>(n_steps: usize, out: &mut [Vec3<T>], mut f: impl FnMut(&Ve
 /// eigenvectors are ours ([`SymmetricEigen`]), so R may differ from pytransform3d's in
 /// the sign of column pairs and, for repeated radii, in the basis of the repeated axes.
 ///
-/// Method: [`SymmetricEigen`] of the symmetric part of `cov`. Accuracy: `R·diag(radii²)·Rᵀ`
+/// Method: [`SymmetricEigen`] of the symmetric part of `cov`.
+///
+/// # Accuracy
+///
+/// `R·diag(radii²)·Rᵀ`
 /// reproduces `cov` to `O(ε·‖cov‖)` (observed on the golden files, relative to
 /// `max(1, max|cov|)`: 1.9·10⁻¹⁵ in f64, 7·10⁻⁷ in f32).
 ///
-/// Errors: [`Error::NonFinite`] if an input contains NaN or ±∞.
+/// # Errors
+///
+/// [`Error::NonFinite`] if an input contains NaN or ±∞.
 pub fn to_ellipsoid<T: Real>(
     mean: &Vec3<T>,
     cov: &Mat3<T>,
@@ -206,13 +214,17 @@ pub fn to_ellipsoid<T: Real>(
 /// the eigenvector signs (the surface is the same). [`to_projected_ellipsoid_from_eigen`]
 /// takes a given eigen basis.
 ///
-/// Accuracy, relative to `max(1, max|y|)`, given the reference's eigen basis: f64
+/// # Accuracy
+///
+/// Relative to `max(1, max|y|)`, given the reference's eigen basis: f64
 /// ≤ 10⁻¹² (observed 7.4·10⁻¹⁵ on the 200 golden cases; the reference's batch-exp
 /// error never showed there); f32 ≤ 8·ε₃₂·(1 + r), r = factor·√λ₀ the largest
 /// perturbation (its rounding enters sin/cos), observed 1.0·10⁻⁶. With our own eigen
 /// basis add the eigenvector error `ε·‖Σ‖/gap` times r.
 ///
-/// Errors: [`Error::NonFinite`] (any input), [`Error::GridSize`] for
+/// # Errors
+///
+/// [`Error::NonFinite`] (any input), [`Error::GridSize`] for
 /// `n_steps < 2`, [`Error::BufferTooSmall`] if `out.len() < n_steps²`.
 pub fn to_projected_ellipsoid<T: Real>(
     mean: &Transform<T>,
@@ -231,7 +243,11 @@ pub fn to_projected_ellipsoid<T: Real>(
 /// (only the first three of each are used). This lets a caller reproduce the reference's
 /// grid points with the reference's own (LAPACK-specific) eigenvectors.
 ///
-/// Negative values are clamped to 0. Errors as [`to_projected_ellipsoid`].
+/// Negative values are clamped to 0.
+///
+/// # Errors
+///
+/// As [`to_projected_ellipsoid`].
 pub fn to_projected_ellipsoid_from_eigen<T: Real>(
     mean: &Transform<T>,
     values: &Vec6<T>,
@@ -301,7 +317,9 @@ fn check_pose_cov<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Result<(), Err
 /// (rotation first, so `Σ_vv` is the lower-right 3×3 block; only its symmetric part is
 /// read). First order because `p(T̄·Exp(η)) = t̄ + R̄·(v + ½ ω×v + …)`.
 ///
-/// Accuracy: exactly symmetric, `O(ε·‖Σ_vv‖)`. As an approximation of the true
+/// # Accuracy
+///
+/// Exactly symmetric, `O(ε·‖Σ_vv‖)`. As an approximation of the true
 /// distribution: good at small noise, a first-order error that grows with the rotational
 /// noise (the sampled positions lie on arcs); the second-order mean shift is
 /// [`position_mean_second_order`].
@@ -315,7 +333,9 @@ pub fn position_covariance<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Mat3<
 /// `T = T̄·Exp(η)`. Radii ascending, at one standard deviation (multiply by k from
 /// [`chi2_3_radius`] for a probability).
 ///
-/// Errors: [`Error::NonFinite`].
+/// # Errors
+///
+/// [`Error::NonFinite`].
 pub fn position_ellipsoid<T: Real>(
     mean: &Transform<T>,
     cov: &Mat6<T>,
@@ -372,10 +392,16 @@ impl<T: Real> LiftSurface<T> {
     /// Builds the lift map of `(mean, cov)`; only the symmetric part of `cov` is read.
     ///
     /// Method: `Σ_vv^(−½)` from the Jacobi decomposition of `Σ_vv` ([`SymmetricEigen`]),
-    /// eigenvalues at or below `3·ε·λ_max` treated as zero. Accuracy: `O(ε·κ^½)` relative
+    /// eigenvalues at or below `3·ε·λ_max` treated as zero.
+    ///
+    /// # Accuracy
+    ///
+    /// `O(ε·κ^½)` relative
     /// in B, κ the condition number of `Σ_vv` over its numerical range.
     ///
-    /// Errors: [`Error::NonFinite`].
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`].
     pub fn new(mean: &Transform<T>, cov: &Mat6<T>) -> Result<Self, Error> {
         check_pose_cov(mean, cov)?;
         let sym = symmetric_part(cov);
@@ -406,7 +432,9 @@ impl<T: Real> LiftSurface<T> {
     /// points, see the [module docs](self)): `out[i·n + j] = point(k·u(i, j))`. Returns
     /// the number of points written.
     ///
-    /// Errors: [`Error::NonFinite`] for non-finite k, [`Error::GridSize`] for
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] for non-finite k, [`Error::GridSize`] for
     /// `n_steps < 2`, [`Error::BufferTooSmall`] if `out.len() < n_steps²`.
     pub fn grid(&self, k: T, n_steps: usize, out: &mut [Vec3<T>]) -> Result<usize, Error> {
         if !k.is_finite() {
@@ -457,7 +485,11 @@ pub fn lift_surface<T: Real>(
 /// This is the ellipsoid of [`position_ellipsoid`] (`{y : (y − t̄)ᵀ(R̄Σ_vvR̄ᵀ)⁻¹(y − t̄) =
 /// k²}`). It is right at small noise but does not bend with the sampled cloud, so it
 /// under-covers at larger rotational noise. Method:
-/// [`SymmetricEigen::sqrt`]. Errors as [`lift_surface`].
+/// [`SymmetricEigen::sqrt`].
+///
+/// # Errors
+///
+/// As [`lift_surface`].
 pub fn marginal_surface<T: Real>(
     mean: &Transform<T>,
     cov: &Mat6<T>,
@@ -495,7 +527,11 @@ pub enum Surface {
 ///
 /// `cov` is the right (local) perturbation covariance for [`Surface::Lift`] and
 /// [`Surface::Marginal`]; [`Surface::Pytransform3d`] uses it as given, as the reference
-/// does. Errors as the chosen function.
+/// does.
+///
+/// # Errors
+///
+/// As the chosen function.
 pub fn surface_grid<T: Real>(
     surface: Surface,
     mean: &Transform<T>,
@@ -549,12 +585,16 @@ fn chi3_cdf(k: f64) -> f64 {
 /// The probability that a 3D Gaussian vector lies within Mahalanobis distance `k` of its
 /// mean: `P(‖x‖ ≤ k)`, x ~ N(0, I₃), i.e. the χ²₃ CDF at k² — the coverage of an
 /// equiprobable 3D ellipsoid drawn at k standard deviations (0.1987, 0.7385, 0.9707 for
-/// k = 1, 2, 3).
+/// k = 1, 2, 3). `k ≤ 0` gives 0, `k = +∞` gives 1, NaN gives NaN.
 ///
 /// Method: the regularized incomplete gamma function `P(3/2, k²/2)`, by its power series
 /// below k = 2 and as `erf(k/√2) − √(2/π)·k·e^(−k²/2)` above (libm's erf), evaluated in
-/// f64 and rounded to T. Accuracy: a few f64 ulps (relative, also for small k), then the
-/// rounding to T. `k ≤ 0` gives 0, `k = +∞` gives 1, NaN gives NaN.
+/// f64 and rounded to T.
+///
+/// # Accuracy
+///
+/// A few f64 ulps (relative, also for small k), then the
+/// rounding to T.
 #[inline]
 pub fn chi2_3_probability<T: Real>(k: T) -> T {
     T::lit(chi3_cdf(k.to_f64()))
@@ -565,12 +605,16 @@ pub fn chi2_3_probability<T: Real>(k: T) -> T {
 /// [`chi2_3_probability`]. `p = 0.95` gives k = 2.7955 (not 1.96, which holds 72 % in
 /// 3D); 0.1987 / 0.7385 / 0.9707 give 1 / 2 / 3.
 ///
+/// Returns `None` for p outside `[0, 1)` or NaN (p = 1 needs k = ∞); `Some(0)` for p = 0.
+///
 /// Method: bisection on [`chi2_3_probability`] (evaluated in f64) over a bracket found by
 /// doubling from 1, until the bracket is two adjacent f64 numbers; returns the upper end
-/// rounded to T. Accuracy: `|k − k*| ≲ ε_f64·(1 + 1/(k·pdf))` before the rounding to T,
-/// i.e. a few f64 ulps for p in [10⁻¹², 1 − 10⁻¹²].
+/// rounded to T.
 ///
-/// Returns `None` for p outside `[0, 1)` or NaN (p = 1 needs k = ∞); `Some(0)` for p = 0.
+/// # Accuracy
+///
+/// `|k − k*| ≲ ε_f64·(1 + 1/(k·pdf))` before the rounding to T,
+/// i.e. a few f64 ulps for p in [10⁻¹², 1 − 10⁻¹²].
 pub fn chi2_3_radius<T: Real>(p: T) -> Option<T> {
     let p = p.to_f64();
     if !(0.0..1.0).contains(&p) {

@@ -69,11 +69,15 @@ impl<T: Real, const N: usize> SymmetricEigen<T, N> {
     /// scaled by their largest element first (no overflow or underflow for any finite
     /// input).
     ///
-    /// Accuracy: eigenvalues to `O(N·ε·‖A‖)` absolute (observed ≤ 4·10⁻¹⁵·‖A‖ against
+    /// # Accuracy
+    ///
+    /// Eigenvalues to `O(N·ε·‖A‖)` absolute (observed ≤ 4·10⁻¹⁵·‖A‖ against
     /// LAPACK `eigh` on the golden files), eigenvectors orthonormal to `O(N·ε)`, each
     /// accurate to `O(ε·‖A‖/gap)`. `V·diag(λ)·Vᵀ` reproduces A to `O(N·ε·‖A‖)`.
     ///
-    /// Errors: [`Error::NonFinite`] if `a` contains NaN or ±∞.
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] if `a` contains NaN or ±∞.
     pub fn new(a: &Matrix<T, N, N>) -> Result<Self, Error> {
         if !a.is_finite() {
             return Err(Error::NonFinite);
