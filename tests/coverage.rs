@@ -2,8 +2,8 @@
 //! sample the PPOE model `T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M` (fixed seed, 10⁵ samples), and count
 //! the fraction of sampled tool positions inside the triangulated surface drawn at
 //! k = 1, 2, 3. It must be within 0.03 of the probability the surface is drawn for,
-//! `chi2_3_probability(k)` = 0.199 / 0.739 / 0.971 (issue 4, "Which surface"; MATH.md §8
-//! measured 0.20 / 0.75 / 0.98 on the seed robot at frame 0).
+//! `chi2_3_probability(k)` = 0.199 / 0.739 / 0.971 (the surface's claim in the
+//! `ppoe::surface` module docs, "Which surface to draw").
 //!
 //! # The inside test
 //!

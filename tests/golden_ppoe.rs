@@ -1,5 +1,5 @@
 //! Golden tests of the PPOE on our test robots, against `test_data/reference/generate_ppoe.py`
-//! (pytransform3d 3.17.0's example, MATH.md §5): the pytransform3d-compatible variant must
+//! (pytransform3d 3.17.0's example `ProbabilisticRobotKinematics`): the pytransform3d-compatible variant must
 //! reproduce the example's pose and covariance; the right and left conventions must match
 //! `Ad(M⁻¹)·C·Ad(M⁻¹)ᵀ` and `Ad(T̄)·Σ_R·Ad(T̄)ᵀ` computed by the oracle script from the
 //! same C.

@@ -140,7 +140,7 @@ fn fourth_order_ppoe_is_closer_at_large_noise() {
 }
 
 /// The second-order mean of the tool position predicts the sampled mean, which on the seed
-/// robot at its noise sits about 0.10 m from the rigid tool position (MATH.md §8).
+/// robot at its noise sits about 0.10 m from the rigid tool position (printed below).
 #[test]
 fn second_order_mean_of_tool_position() {
     let (joints, home) = seed_chain();
@@ -169,7 +169,7 @@ fn second_order_mean_of_tool_position() {
     let se = (var / etas.len() as f64).sqrt();
     println!("sampled mean {shift:.4} m from t̄; second-order mean misses it by {miss:.4} m (standard error {se:.4} m)");
     assert!(shift > 0.05, "{shift}");
-    // The neglected fourth-order terms are ≈ 5 mm here (MATH.md §8): the prediction must
+    // The neglected fourth-order terms are ≈ 5 mm here: the prediction must
     // explain over 90 % of the shift, and miss by less than 5 mm plus 3 standard errors.
     assert!(miss < 0.005 + 3.0 * se, "{miss}");
 }

@@ -295,7 +295,8 @@ pub fn chain_from_golden<T: ppoe::Real>(g: &Value) -> (Vec<ppoe::chain::Joint<T>
     (joints, cast_t(&transform(&g["home"])))
 }
 
-/// The seed example's joint covariances (MATH.md §5.3) scaled by `scale`: 0.05 rad² about
+/// The seed example's joint covariances (pytransform3d's PPOE example, as
+/// `test_data/reference/generate_ppoe.py` uses them) scaled by `scale`: 0.05 rad² about
 /// the base z axis for joint 1 and about the base y axis for joints 2, 3 and 5.
 pub fn seed_covs(scale: f64) -> Vec<Mat6<f64>> {
     let z = Mat6::from_diagonal(&Vector([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]));
@@ -306,7 +307,8 @@ pub fn seed_covs(scale: f64) -> Vec<Mat6<f64>> {
         .collect()
 }
 
-/// The seed animation's joint values at frame k (MATH.md §5.3).
+/// The seed animation's joint values at frame k (pytransform3d's PPOE example, as
+/// `test_data/reference/generate_ppoe.py` computes them).
 pub fn seed_frame(k: usize) -> Vec<f64> {
     let angle = 0.5 * (2.0 * std::f64::consts::PI * (0.5 + k as f64 / 200.0)).cos();
     [1.0, 1.0, 1.0, 0.0, 1.0, 0.0]
