@@ -82,8 +82,9 @@ impl<T: Real, const N: usize> SymmetricEigen<T, N> {
         if !a.is_finite() {
             return Err(Error::NonFinite);
         }
+        let mut m = symmetric_part(a);
         let mut v = Matrix::<T, N, N>::identity();
-        let Some((mut m, unscale)) = prescaled(&symmetric_part(a)) else {
+        let Some(unscale) = prescale(&mut m) else {
             return Ok(Self {
                 values: Vector::zeros(),
                 vectors: v,
@@ -91,7 +92,62 @@ impl<T: Real, const N: usize> SymmetricEigen<T, N> {
                 converged: true,
             });
         };
-        let (sweeps, converged) = jacobi_sweeps(&mut m, &mut v);
+        // The sweeps stay here, not in a function of their own: moved out (even always
+        // inlined), they compiled to more instructions per rotation.
+        let mut sweeps = 0;
+        let mut converged = false;
+        loop {
+            let mut rotated = false;
+            for p in 0..N {
+                for q in (p + 1)..N {
+                    let (app, aqq, apq) = (m.0[p][p], m.0[q][q], m.0[p][q]);
+                    if negligible(apq, app, aqq) {
+                        continue;
+                    }
+                    rotated = true;
+                    // t = tan of the rotation angle, the smaller root of
+                    // t² + 2τt − 1 = 0 (|angle| ≤ π/4); hypot avoids overflow of τ².
+                    let tau = (aqq - app) / (apq + apq);
+                    let root = T::ONE.hypot(tau);
+                    let t = if tau >= T::ZERO {
+                        T::ONE / (tau + root)
+                    } else {
+                        -T::ONE / (root - tau)
+                    };
+                    let c = T::ONE / (T::ONE + t * t).sqrt();
+                    let s = t * c;
+                    m.0[p][p] = app - t * apq;
+                    m.0[q][q] = aqq + t * apq;
+                    m.0[p][q] = T::ZERO;
+                    m.0[q][p] = T::ZERO;
+                    for r in 0..N {
+                        if r != p && r != q {
+                            let (arp, arq) = (m.0[r][p], m.0[r][q]);
+                            let np = c * arp - s * arq;
+                            let nq = s * arp + c * arq;
+                            m.0[r][p] = np;
+                            m.0[p][r] = np;
+                            m.0[r][q] = nq;
+                            m.0[q][r] = nq;
+                        }
+                    }
+                    for row in v.0.iter_mut() {
+                        let (vrp, vrq) = (row[p], row[q]);
+                        row[p] = c * vrp - s * vrq;
+                        row[q] = s * vrp + c * vrq;
+                    }
+                }
+            }
+            sweeps += 1;
+            if !rotated {
+                converged = true;
+                break;
+            }
+            if sweeps >= MAX_SWEEPS {
+                break;
+            }
+        }
+
         let mut values = m.diagonal().scale(unscale);
         sort_descending(&mut values, &mut v);
         fix_signs(&mut v);
@@ -183,105 +239,33 @@ impl<T: Real, const N: usize> SymmetricEigen<T, N> {
     }
 }
 
-/// The matrix scaled so that every intermediate of the iteration stays finite and normal,
-/// and the factor that undoes the scaling; `None` for the zero matrix. Matrices with
+/// Scales `m` so that every intermediate of the iteration stays finite and normal, and
+/// returns the factor that undoes the scaling; `None` for the zero matrix. Matrices with
 /// elements outside `[√min_positive, √max]` are divided by their largest element (a
 /// subnormal one is first lifted by the exact power of two 1/ε, since 1/amax would
-/// overflow); others are returned unchanged with factor 1.
-fn prescaled<T: Real, const N: usize>(m: &Matrix<T, N, N>) -> Option<(Matrix<T, N, N>, T)> {
-    let mut m = *m;
+/// overflow); others are left unchanged, factor 1.
+#[inline(always)]
+fn prescale<T: Real, const N: usize>(m: &mut Matrix<T, N, N>) -> Option<T> {
     let mut unscale = T::ONE;
     let mut amax = m.amax();
     if amax == T::ZERO {
         return None;
     }
     if amax < T::min_positive_value() {
-        m = m.scale(T::ONE / T::EPS);
+        *m = m.scale(T::ONE / T::EPS);
         amax /= T::EPS;
         unscale = T::EPS;
     }
     if amax < T::min_positive_value().sqrt() || amax > T::max_value().sqrt() {
-        m = m.scale(T::ONE / amax);
+        *m = m.scale(T::ONE / amax);
         unscale *= amax;
     }
-    Some((m, unscale))
-}
-
-/// Cyclic Jacobi sweeps on `m` (symmetric), accumulating the rotations in `v`, until a
-/// sweep rotates nothing or [`MAX_SWEEPS`] sweeps ran: returns the number of sweeps and
-/// whether the first happened.
-fn jacobi_sweeps<T: Real, const N: usize>(
-    m: &mut Matrix<T, N, N>,
-    v: &mut Matrix<T, N, N>,
-) -> (usize, bool) {
-    let mut sweeps = 0;
-    loop {
-        let mut rotated = false;
-        for p in 0..N {
-            for q in (p + 1)..N {
-                rotated |= rotate(m, v, p, q);
-            }
-        }
-        sweeps += 1;
-        if !rotated {
-            return (sweeps, true);
-        }
-        if sweeps >= MAX_SWEEPS {
-            return (sweeps, false);
-        }
-    }
-}
-
-/// One Jacobi rotation in the plane (p, q), p < q, that zeroes `m[p][q]`, applied to `m`
-/// on both sides and to the columns of `v`; skipped (returns `false`) when `m[p][q]` is
-/// already negligible.
-#[inline]
-fn rotate<T: Real, const N: usize>(
-    m: &mut Matrix<T, N, N>,
-    v: &mut Matrix<T, N, N>,
-    p: usize,
-    q: usize,
-) -> bool {
-    let (app, aqq, apq) = (m.0[p][p], m.0[q][q], m.0[p][q]);
-    if negligible(apq, app, aqq) {
-        return false;
-    }
-    // t = tan of the rotation angle, the smaller root of t² + 2τt − 1 = 0
-    // (|angle| ≤ π/4); hypot avoids overflow of τ².
-    let tau = (aqq - app) / (apq + apq);
-    let root = T::ONE.hypot(tau);
-    let t = if tau >= T::ZERO {
-        T::ONE / (tau + root)
-    } else {
-        -T::ONE / (root - tau)
-    };
-    let c = T::ONE / (T::ONE + t * t).sqrt();
-    let s = t * c;
-    m.0[p][p] = app - t * apq;
-    m.0[q][q] = aqq + t * apq;
-    m.0[p][q] = T::ZERO;
-    m.0[q][p] = T::ZERO;
-    for r in 0..N {
-        if r != p && r != q {
-            let (arp, arq) = (m.0[r][p], m.0[r][q]);
-            let np = c * arp - s * arq;
-            let nq = s * arp + c * arq;
-            m.0[r][p] = np;
-            m.0[p][r] = np;
-            m.0[r][q] = nq;
-            m.0[q][r] = nq;
-        }
-    }
-    for row in v.0.iter_mut() {
-        let (vrp, vrq) = (row[p], row[q]);
-        row[p] = c * vrp - s * vrq;
-        row[q] = s * vrp + c * vrq;
-    }
-    true
+    Some(unscale)
 }
 
 /// Sorts `values` descending (a stable insertion sort: exactly equal values keep their
 /// order); the columns of `v` move with their values.
+#[inline(always)]
 fn sort_descending<T: Real, const N: usize>(values: &mut Vector<T, N>, v: &mut Matrix<T, N, N>) {
     for k in 1..N {
         let mut j = k;
@@ -297,6 +281,7 @@ fn sort_descending<T: Real, const N: usize>(values: &mut Vector<T, N>, v: &mut M
 
 /// The sign convention: each column of `v` negated where needed so that its
 /// largest-magnitude component (the first among exactly equal magnitudes) is positive.
+#[inline(always)]
 fn fix_signs<T: Real, const N: usize>(v: &mut Matrix<T, N, N>) {
     for k in 0..N {
         let mut best = T::ZERO;
