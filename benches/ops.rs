@@ -5,8 +5,8 @@
 mod baseline_nalgebra;
 
 use criterion::{criterion_group, BenchmarkId, Criterion};
-use ppoe::chain::{ChainRef, Convention, Joint, JointKind};
-use ppoe::ellipsoid::{self, Surface};
+use ppoe::chain::{ChainView, Convention, Joint, JointKind};
+use ppoe::surface::{self, Surface};
 use ppoe::uncertainty::{self, IterationOptions, Order};
 use ppoe::{se3, so3, Mat6, Matrix, Real, Transform, Vec3, Vector};
 use serde_json::Value;
@@ -75,10 +75,7 @@ fn seed_chain_rounded<T: Real>(g: &Value) -> (Vec<Joint<T>>, Transform<T>) {
 fn without_constants<T: Real>(joints: &[Joint<T>]) -> Vec<Joint<T>> {
     joints
         .iter()
-        .map(|j| Joint {
-            constants: None,
-            ..*j
-        })
+        .map(|j| Joint::new(j.name, j.kind, j.screw.0, j.lower, j.upper))
         .collect()
 }
 
@@ -219,7 +216,7 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     let t = ty::<T>();
     let g = golden_seed();
     let (joints, home) = seed_chain::<T>(&g);
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };
@@ -230,7 +227,7 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     // Joints as `Joint::new` makes them (hand-written const chains): the displacement
     // constants derived in every call.
     let bare = without_constants(&joints);
-    let bare_chain = ChainRef {
+    let bare_chain = ChainView {
         joints: &bare,
         home,
     };
@@ -246,7 +243,7 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     });
     // The same with the golden values only rounded to T (no `Joint::from_f64`).
     let (rj, rh) = seed_chain_rounded::<T>(&g);
-    let rounded = ChainRef {
+    let rounded = ChainView {
         joints: &rj,
         home: rh,
     };
@@ -279,7 +276,7 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     let mut group = c.benchmark_group(format!("ppoe_chain/{t}"));
     for n in [1usize, 2, 4, 8, 16, 32] {
         let (js, home, th, cv) = synthetic::<T>(n);
-        let ch = ChainRef { joints: &js, home };
+        let ch = ChainView { joints: &js, home };
         group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
             b.iter(|| ch.ppoe(black_box(&th), &cv, Convention::Right))
         });
@@ -295,7 +292,7 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
         ] {
             c.bench_function(&format!("surface_{name}_n{n}/{t}"), |b| {
                 b.iter(|| {
-                    ellipsoid::surface_grid(s, black_box(&tip.pose), &tip.cov, T::ONE, n, &mut buf)
+                    surface::surface_grid(s, black_box(&tip.pose), &tip.cov, T::ONE, n, &mut buf)
                 })
             });
         }
@@ -346,7 +343,7 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
     let (joints, home) = seed_chain::<T>(&g);
     let (thetas, covs) = seed_inputs::<T>();
     let (na, na_covs) = nalgebra_inputs(&joints, home, &covs);
-    let tip = ChainRef {
+    let tip = ChainView {
         joints: &joints,
         home,
     }
@@ -393,29 +390,29 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
     }));
     let (j1, j2) = (joints.clone(), joints.clone());
     v.push(op(format!("ppoe_seed/ours/{t}"), move || {
-        let chain = ChainRef { joints: &j1, home };
+        let chain = ChainView { joints: &j1, home };
         chain.ppoe(black_box(&thetas), &covs, Convention::Right)
     }));
     let bare = without_constants(&joints);
     v.push(op(format!("ppoe_seed/ours_joint_new/{t}"), move || {
-        let chain = ChainRef {
+        let chain = ChainView {
             joints: &bare,
             home,
         };
         chain.ppoe(black_box(&thetas), &covs, Convention::Right)
     }));
     v.push(op(format!("ppoe_seed/ours_4th_order/{t}"), move || {
-        let chain = ChainRef { joints: &j2, home };
+        let chain = ChainView { joints: &j2, home };
         chain.ppoe_fourth_order(black_box(&thetas), &covs, Convention::Right)
     }));
     let j3 = joints.clone();
     v.push(op(format!("fk_seed/ours/{t}"), move || {
-        let chain = ChainRef { joints: &j3, home };
+        let chain = ChainView { joints: &j3, home };
         chain.forward_kinematics(black_box(&thetas))
     }));
     let (rj, rh) = seed_chain_rounded::<T>(&g);
     v.push(op(format!("fk_seed/rounded_only/{t}"), move || {
-        let chain = ChainRef {
+        let chain = ChainView {
             joints: &rj,
             home: rh,
         };
@@ -427,7 +424,7 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
     for n in [1usize, 2, 4, 8, 16, 32] {
         let (js, home, th, cv) = synthetic::<T>(n);
         v.push(op(format!("ppoe_chain/{t}/{n}"), move || {
-            let ch = ChainRef { joints: &js, home };
+            let ch = ChainView { joints: &js, home };
             ch.ppoe(black_box(&th), &cv, Convention::Right)
         }));
     }
@@ -438,7 +435,7 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
         ] {
             let mut buf = vec![Vec3::<T>::zeros(); 2500];
             v.push(op(format!("surface_{name}_n{n}/{t}"), move || {
-                ellipsoid::surface_grid(s, black_box(&tip.pose), &tip.cov, T::ONE, n, &mut buf)
+                surface::surface_grid(s, black_box(&tip.pose), &tip.cov, T::ONE, n, &mut buf)
                     .is_ok()
             }));
         }

@@ -11,7 +11,7 @@
 //! fixed seed (ChaCha8), so a run is deterministic: the same command gives the same file.
 //! Progress and the run time go to standard error (they are not part of the report).
 
-use ppoe::chain::{screw_noise, ChainRef, Convention};
+use ppoe::chain::{screw_noise, ChainView, Convention};
 use ppoe::{se3, Mat6, Matrix, Transform, Vec6, Vector};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -131,7 +131,7 @@ impl Errors {
 /// [`Gaussian6::box_muller`]) and accumulates the moments of the right perturbation
 /// η = Log(T̄⁻¹·T).
 fn sample_chain(
-    chain: &ChainRef<f64>,
+    chain: &ChainView<f64>,
     thetas: &[f64],
     covs: &[Mat6<f64>],
     n: usize,
@@ -263,7 +263,7 @@ fn part1(cases: &[Case], n: usize) -> Vec<Vec<Row>> {
     for (ci, case) in cases.iter().enumerate() {
         let g = golden(&format!("ppoe/{}.json", case.file));
         let (joints, home) = chain_from_golden::<f64>(&g);
-        let chain = ChainRef {
+        let chain = ChainView {
             joints: &joints,
             home,
         };
@@ -400,11 +400,11 @@ fn part3() -> Vec<F32Row> {
             let g = golden(&format!("ppoe/{file}.json"));
             let (j64, h64) = chain_from_golden::<f64>(&g);
             let (j32, h32) = chain_from_golden::<f32>(&g);
-            let c64 = ChainRef {
+            let c64 = ChainView {
                 joints: &j64,
                 home: h64,
             };
-            let c32 = ChainRef {
+            let c32 = ChainView {
                 joints: &j32,
                 home: h32,
             };
@@ -547,8 +547,8 @@ fn report(
     d.para(
         "Model (MATH.md §8): `T = D₁·Exp(ξ₁)·D₂·Exp(ξ₂)·…·Dₙ·Exp(ξₙ)·M`, `Dᵢ = Exp(Sᵢθᵢ)`, \
          ξᵢ ~ N(0, scale·Σᵢ), sampled N times; η = Log(T̄⁻¹·T) (right perturbation, tip \
-         frame) compared with `ChainRef::ppoe(θ, covs, Convention::Right)` (**2nd** order) \
-         and `ChainRef::ppoe_fourth_order(θ, covs, Convention::Right)` (**4th**: the \
+         frame) compared with `ChainView::ppoe(θ, covs, Convention::Right)` (**2nd** order) \
+         and `ChainView::ppoe_fourth_order(θ, covs, Convention::Right)` (**4th**: the \
          Barfoot–Furgale fourth-order compounding once per joint in the global form, then \
          `Ad(T̄⁻¹)`).",
     );

@@ -29,6 +29,8 @@ pub enum Error {
     BufferTooSmall,
     /// Inputs of mismatched lengths (e.g. joint values and joint covariances).
     LengthMismatch,
+    /// A surface grid with fewer than 2 steps (it needs both poles).
+    GridSize,
     /// A joint's displacement constants ([`crate::chain::JointConstants`]) are not those
     /// of its screw axis (changed after they were computed, or written by hand).
     InconsistentConstants,
@@ -47,6 +49,7 @@ impl fmt::Display for Error {
             Error::TooFewSamples => "too few samples",
             Error::BufferTooSmall => "output buffer too small",
             Error::LengthMismatch => "inputs have mismatched lengths",
+            Error::GridSize => "surface grid needs at least 2 steps",
             Error::InconsistentConstants => "joint constants do not match its screw axis",
         })
     }

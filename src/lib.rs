@@ -12,39 +12,73 @@
 //! | module | concept |
 //! |---|---|
 //! | [`scalar`] | the [`Real`] trait and its precision-dependent constants |
-//! | [`linalg`] | fixed-size vectors and matrices |
+//! | [`linalg`] | fixed-size vectors and matrices, Cholesky, the symmetric eigen-solver |
 //! | [`so3`] | rotations: hat/vee, exp, log, Jacobians |
 //! | [`se3`] | rigid transforms: exp, log, adjoint, Jacobians, screw axes |
 //! | [`uncertainty`] | uncertain transforms: concatenation, inversion, fusion, estimation |
-//! | [`ellipsoid`] | symmetric eigen-decomposition and equiprobable ellipsoids |
+//! | [`joint`] | the joint model: kind, screw axis, limits, displacement, joint noise |
+//! | [`chain`] | kinematic chains: forward kinematics, Jacobians, checks, and the PPOE |
+//! | [`surface`] | equiprobable surfaces of an uncertain tool position, for drawing |
+//! | [`error`] | the error type of the checked entry points |
+//!
+//! The PPOE of a two-joint arm held in a `const` item (what `ppoe-build` generates from
+//! a URDF): the tip pose and the covariance of its right perturbation `T = T̄·Exp(η)`,
+//! η in the tip frame, rotation first.
 //!
 //! ```
-//! use ppoe::{se3, Mat6, Transform, Vec6};
-//! use ppoe::uncertainty::{concat_globally, Order};
+//! use ppoe::chain::{screw_noise, Chain, Convention, Joint, JointKind};
+//! use ppoe::Transform;
 //!
-//! let a2b: Transform<f64> = se3::exp(&Vec6::from([0.1, 0.0, 0.3, 1.0, 0.0, 0.0]));
-//! let b2c: Transform<f64> = se3::exp(&Vec6::from([0.0, 0.2, 0.0, 0.0, 0.5, 0.0]));
-//! let cov = Mat6::<f64>::identity() * 1e-3;
-//! // Left (global) perturbation: T = Exp(ξ)·T̄, ξ ~ N(0, Σ) in the output frame.
-//! let (a2c, cov_a2c) = concat_globally(&a2b, &cov, &b2c, &cov, Order::Fourth);
-//! assert!((a2c.translation.0[1] - (b2c * a2b).translation.0[1]).abs() < 1e-15);
-//! assert!(cov_a2c.0[0][0] > 1.9e-3); // both rotation variances add up
+//! const INF: f64 = f64::INFINITY;
+//! // A planar arm: joints about z through x = 0 and x = 0.5 (screw axes in the base
+//! // frame, rotation first), tip at x = 1 at the home pose.
+//! const ARM: Chain<f64, 2> = Chain::new(
+//!     "base",
+//!     "tip",
+//!     [
+//!         Joint::new("shoulder", JointKind::Revolute, [0., 0., 1., 0., 0., 0.], -INF, INF),
+//!         Joint::new("elbow", JointKind::Revolute, [0., 0., 1., 0., -0.5, 0.], -INF, INF),
+//!     ],
+//!     Transform::from_parts([[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]], [1., 0., 0.]),
+//! );
+//! // Joint-value noise: σ = 0.01 rad on each joint.
+//! let covs = ARM.joints.map(|j| screw_noise(&j.screw, 1e-4));
+//! let tip = ARM.ppoe_checked(&[0.3, -0.2], &covs, Convention::Right)?;
+//! // The mean is the rigid forward kinematics: links of 0.5 at angles 0.3 and 0.1.
+//! let x = 0.5 * 0.3f64.cos() + 0.5 * 0.1f64.cos();
+//! assert!((tip.pose.translation.0[0] - x).abs() < 1e-12);
+//! // Both joints turn the tip about parallel z axes: their yaw variances add up.
+//! assert!((tip.cov.0[2][2] - 2e-4).abs() < 1e-18);
+//! # Ok::<(), ppoe::Error>(())
 //! ```
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
 pub mod chain;
-pub mod ellipsoid;
 pub mod error;
+pub mod joint;
 pub mod linalg;
+mod ppoe;
 pub mod scalar;
 pub mod se3;
 pub mod so3;
+pub mod surface;
+mod transport;
 pub mod uncertainty;
 
+/// The former name of [`surface`] (which also held [`SymmetricEigen`], now in
+/// [`linalg`]): the same items under their old paths.
+#[deprecated(
+    note = "renamed: the surfaces are in `ppoe::surface`, the eigen-solver in `ppoe::linalg`"
+)]
+pub mod ellipsoid {
+    pub use crate::linalg::{SymmetricEigen, MAX_SWEEPS};
+    pub use crate::surface::*;
+}
+
 pub use error::Error;
-pub use linalg::{Mat3, Mat6, Matrix, Vec3, Vec6, Vector};
+pub use linalg::{Mat3, Mat6, Matrix, SymmetricEigen, Vec3, Vec6, Vector};
 pub use scalar::Real;
 pub use se3::Transform;
 

@@ -49,7 +49,8 @@ pub fn left_to_right<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Mat6<T> {
 /// cov_A2B, mean_B2C, cov_B2C)` (same argument order). With [`Order::Fourth`] it adds the
 /// fourth-order terms of Barfoot & Furgale, *Associating Uncertainty With
 /// Three-Dimensional Poses for Use in Estimation Problems*, IEEE T-RO 2014, eq. 55–57,
-/// exactly as pytransform3d does (MATH.md §3.1). Cost: two 6×6 congruences (second order),
+/// exactly as pytransform3d does (the same terms, evaluated in translation-first order
+/// as in the paper). Cost: two 6×6 congruences (second order),
 /// about 30 3×3 products more (fourth).
 pub fn concat_globally<T: Real>(
     mean_a2b: &Transform<T>,
@@ -91,8 +92,8 @@ fn swap_order<T: Real>(m: &Mat6<T>) -> Mat6<T> {
 }
 
 /// The fourth-order compounding terms F(Σ₁, Σ₂) of Barfoot & Furgale (2014), where Σ₁ is
-/// the second transform's covariance and Σ₂ the first one moved into the output frame
-/// (MATH.md §3.1). Computed in translation-first order, as in the paper.
+/// the second transform's covariance and Σ₂ the first one moved into the output frame.
+/// Computed in translation-first order, as in the paper.
 pub(crate) fn fourth_order_terms<T: Real>(s1: &Mat6<T>, s2: &Mat6<T>) -> Mat6<T> {
     let a = swap_order(s1);
     let b = swap_order(s2);
@@ -222,7 +223,8 @@ fn fusion_terms<T: Real>(
 /// inverse information matrix at the returned mean (pytransform3d evaluates it one
 /// update earlier; at convergence they agree).
 ///
-/// Errors: [`Error::Empty`] for no poses or `means.len() != covs.len()`,
+/// Errors: [`Error::LengthMismatch`] if `means.len() != covs.len()`, [`Error::Empty`]
+/// for no poses,
 /// [`Error::NonFinite`], [`Error::NotARotation`] ([`Transform::check`]),
 /// [`Error::NotSymmetric`] / [`Error::NotPositiveSemidefinite`] ([`check_covariance`]),
 /// [`Error::Singular`] if a covariance or the information matrix is not positive
@@ -234,7 +236,10 @@ pub fn pose_fusion<T: Real>(
     options: &IterationOptions<T>,
 ) -> Result<Fusion<T>, Error> {
     const MAX_POSES: usize = 16;
-    if means.is_empty() || means.len() != covs.len() {
+    if means.len() != covs.len() {
+        return Err(Error::LengthMismatch);
+    }
+    if means.is_empty() {
         return Err(Error::Empty);
     }
     if means.len() > MAX_POSES {
@@ -354,7 +359,9 @@ pub struct Estimate<G, C> {
 ///
 /// Corresponds to pytransform3d's `frechet_mean` as used by its two estimators, with one
 /// deliberate difference: pytransform3d takes right differences but applies a *left*
-/// update, which converges only for mean rotations below 60° (MATH.md §3.5). The
+/// update, which converges only for mean rotations below 60° (linearised, an error e of
+/// the mean maps to `(I − Rᵀ)·e`, whose spectral radius `2·sin(θ/2)` is below 1 only for
+/// θ < π/3). The
 /// consistent right update here has the same fixed point (so the results agree
 /// wherever pytransform3d converges) and converges at any angle.
 ///

@@ -85,13 +85,13 @@ fn random_tables() {
         };
         src += &code;
         let f32_ref = if has_f32 {
-            format!("Some(ppoe::chain::ChainRef {{ joints: &{name}_F32.joints, home: {name}_F32.home }})")
+            format!("Some(ppoe::chain::ChainView {{ joints: &{name}_F32.joints, home: {name}_F32.home }})")
         } else {
             "None".to_string()
         };
         let _ = writeln!(
             list,
-            "    RandomTable {{ urdf: {urdf_lit}, base: {base_lit}, tip: {tip_lit}, f64: ppoe::chain::ChainRef {{ joints: &{name}.joints, home: {name}.home }}, f32: {f32_ref} }},"
+            "    RandomTable {{ urdf: {urdf_lit}, base: {base_lit}, tip: {tip_lit}, f64: ppoe::chain::ChainView {{ joints: &{name}.joints, home: {name}.home }}, f32: {f32_ref} }},"
         );
     }
     src += &format!("\n/// The random robots' tables with their URDF text.\npub static RANDOM: &[RandomTable] = &[\n{list}];\n");

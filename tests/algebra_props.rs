@@ -2,7 +2,7 @@
 //! both scalars: every property is written once, generically, and run for f32 and f64.
 
 use approx::assert_relative_eq;
-use ppoe::chain::{bending_noise, screw_noise, Chain, ChainRef, Convention, Joint, JointKind};
+use ppoe::chain::{bending_noise, screw_noise, Chain, ChainView, Convention, Joint, JointKind};
 use ppoe::uncertainty::{self, Order};
 use ppoe::{se3, so3, Error, Mat3, Mat6, Real, Transform, Vec3, Vec6, Vector};
 use proptest::prelude::*;
@@ -362,14 +362,14 @@ fn displacement_matches_exp<T: Real>(u: [f64; 3], norm: f64, v: [f64; 3], theta:
     let got = j.displacement(T::lit(theta));
     // With the constants computed once (`prepared`, what tables hold): the same bits.
     let prepared = j.prepared();
-    assert!(prepared.constants.is_some());
+    assert!(prepared.constants().is_some());
     assert_eq!(
         prepared.displacement(T::lit(theta)),
         got,
         "prepared joint differs"
     );
     // And the checked path accepts them, but not constants of another screw.
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: core::slice::from_ref(&prepared),
         home: Transform::identity(),
     };
@@ -377,7 +377,7 @@ fn displacement_matches_exp<T: Real>(u: [f64; 3], norm: f64, v: [f64; 3], theta:
         chain.check().unwrap();
         let mut stale = prepared;
         stale.screw.0[3] += T::ONE;
-        let bad = ChainRef {
+        let bad = ChainView {
             joints: core::slice::from_ref(&stale),
             home: Transform::identity(),
         };
@@ -461,4 +461,27 @@ fn extreme_but_finite_inputs_give_finite_results() {
         );
         assert!(so3::left_jacobian_inv(&xi.rotation()).is_finite() || t > 1e38);
     }
+}
+
+/// Mismatched lengths are `LengthMismatch`, no poses `Empty`, for pose fusion.
+#[test]
+fn pose_fusion_length_errors() {
+    let opts = uncertainty::IterationOptions::default();
+    let means = [Transform::<f64>::identity(); 2];
+    let covs = [Mat6::<f64>::identity(); 3];
+    for (m, c) in [
+        (&means[..], &covs[..1]),
+        (&means[..], &covs[..]),
+        (&[][..], &covs[..1]),
+    ] {
+        assert_eq!(
+            uncertainty::pose_fusion(m, c, &opts).err(),
+            Some(Error::LengthMismatch)
+        );
+    }
+    assert_eq!(
+        uncertainty::pose_fusion::<f64>(&[], &[], &opts).err(),
+        Some(Error::Empty)
+    );
+    assert!(uncertainty::pose_fusion(&means, &covs[..2], &opts).is_ok());
 }

@@ -2,8 +2,8 @@
 //! sample the PPOE model `T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M` (fixed seed, 10⁵ samples), and count
 //! the fraction of sampled tool positions inside the triangulated surface drawn at
 //! k = 1, 2, 3. It must be within 0.03 of the probability the surface is drawn for,
-//! `chi2_3_probability(k)` = 0.199 / 0.739 / 0.971 (issue 4, "Which surface"; MATH.md §8
-//! measured 0.20 / 0.75 / 0.98 on the seed robot at frame 0).
+//! `chi2_3_probability(k)` = 0.199 / 0.739 / 0.971 (the surface's claim in the
+//! `ppoe::surface` module docs, "Which surface to draw").
 //!
 //! # The inside test
 //!
@@ -44,8 +44,8 @@
 
 mod common;
 use common::*;
-use ppoe::chain::{screw_noise, ChainRef, Convention, Joint};
-use ppoe::ellipsoid::{chi2_3_probability, unit_sphere_point, LiftSurface};
+use ppoe::chain::{screw_noise, ChainView, Convention, Joint};
+use ppoe::surface::{chi2_3_probability, unit_sphere_point, LiftSurface};
 use ppoe::{se3, Mat3, Mat6, Matrix, Transform, Vec3, Vector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -121,7 +121,7 @@ fn solid_angle(rel: &[(P3, f64)], t: &[u32; 3]) -> f64 {
 
 impl Mesh {
     /// The closed mesh of a row-major `n × n` unit-sphere grid (the layout of
-    /// `lift_surface`, see the `ellipsoid` module docs): rows i = φ from the north pole
+    /// `lift_surface`, see the `surface` module docs): rows i = φ from the north pole
     /// (i = 0) to the south pole (i = n − 1), columns j = θ with column n − 1 repeating
     /// column 0. Each quad `(i, j), (i+1, j), (i+1, j+1), (i, j+1)` gives the triangles
     /// `(a, b, c)` and `(a, c, d)`; on the unit sphere `∂u/∂φ × ∂u/∂θ = u`, so they face
@@ -342,7 +342,7 @@ fn golden_chain(file: &str) -> (Vec<Joint<f64>>, Transform<f64>, serde_json::Val
 
 /// Tool positions of `N_SAMPLES` draws of the model `T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M`.
 fn sample_tool_positions(
-    chain: &ChainRef<f64>,
+    chain: &ChainView<f64>,
     thetas: &[f64],
     covs: &[Mat6<f64>],
     seed: u64,
@@ -356,7 +356,7 @@ fn sample_tool_positions(
 /// Samples one case, checks the coverage at k = 1, 2, 3 and returns the fractions.
 fn check_case(
     name: &str,
-    chain: &ChainRef<f64>,
+    chain: &ChainView<f64>,
     thetas: &[f64],
     covs: &[Mat6<f64>],
     seed: u64,
@@ -544,7 +544,7 @@ fn winding_number_on_unit_sphere_mesh() {
 #[test]
 fn lift_coordinate_inverts_the_surface_map() {
     let (joints, home, _) = golden_chain("ppoe/seed_linkmount_tcp.json");
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };
@@ -566,7 +566,7 @@ fn lift_coordinate_inverts_the_surface_map() {
 #[test]
 fn lift_surface_coverage_seed_robot_frame_0() {
     let (joints, home, _) = golden_chain("ppoe/seed_linkmount_tcp.json");
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };
@@ -576,7 +576,7 @@ fn lift_surface_coverage_seed_robot_frame_0() {
 #[test]
 fn lift_surface_coverage_seed_robot_frame_100() {
     let (joints, home, _) = golden_chain("ppoe/seed_linkmount_tcp.json");
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };
@@ -595,7 +595,7 @@ fn lift_surface_coverage_seed_robot_frame_100() {
 #[test]
 fn lift_surface_coverage_rpy_everywhere() {
     let (joints, home, g) = golden_chain("ppoe/rpy_everywhere_base_tool.json");
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };

@@ -1,9 +1,9 @@
-//! Golden tests of `ppoe::ellipsoid` against pytransform3d 3.17.0
+//! Golden tests of `ppoe::surface` against pytransform3d 3.17.0
 //! (`test_data/golden/core/to_ellipsoid.json`, `to_projected_ellipsoid.json`; layout in
 //! `test_data/golden/README.md`).
 //!
 //! Metric: `err = max|a − b| / max(1, max|b|)` over the compared values.
-//! * f64: `err ≤ 1e-12` (issue 2) for everything compared with the oracle; the extra
+//! * f64: `err ≤ 1e-12` for everything compared with the oracle; the extra
 //!   full-pipeline check with our own eigenvectors adds their error `ε·‖Σ‖/gap`.
 //! * f32: inputs are rounded to f32, results compared with the f64 oracle, within
 //!   bounds derived below: 1e-5 for `to_ellipsoid` and the eigen-solver, and
@@ -17,9 +17,8 @@
 //! eigen-solver is checked separately (values, reconstruction, and — where the top
 //! eigenvalues are well separated — the full pipeline after aligning eigenvector signs).
 
-use ppoe::ellipsoid::{
-    to_ellipsoid, to_projected_ellipsoid, to_projected_ellipsoid_from_eigen, SymmetricEigen,
-};
+use ppoe::linalg::SymmetricEigen;
+use ppoe::surface::{to_ellipsoid, to_projected_ellipsoid, to_projected_ellipsoid_from_eigen};
 use ppoe::{Mat3, Mat6, Matrix, Real, Transform, Vec3, Vec6, Vector};
 use serde_json::Value;
 
@@ -123,8 +122,8 @@ fn oracle_points(case: &Value) -> Vec<f64> {
 }
 
 // ---------------------------------------------------------------------------------------
-// An independent f64 implementation of the projected-ellipsoid grid (MATH.md §3.9 with
-// clamped eigenvalues), with Exp by a 4×4 matrix exponential (scaling and squaring of
+// An independent f64 implementation of the projected-ellipsoid grid (pytransform3d's
+// `to_projected_ellipsoid`, with clamped eigenvalues), with Exp by a 4×4 matrix exponential (scaling and squaring of
 // the Taylor series), shared with none of the library's code.
 
 fn mat4_mul(a: &[[f64; 4]; 4], b: &[[f64; 4]; 4]) -> [[f64; 4]; 4] {

@@ -1,11 +1,12 @@
-//! Property tests of `ppoe::ellipsoid` (each property written once, generically, and run
+//! Property tests of `ppoe::surface` (each property written once, generically, and run
 //! for f32 and f64), and a Monte Carlo check of the marginal position ellipsoid and the
 //! second-order position mean on a synthetic covariance.
 
-use ppoe::ellipsoid::{
+use ppoe::linalg::SymmetricEigen;
+use ppoe::surface::{
     chi2_3_probability, chi2_3_radius, lift_surface, marginal_surface, position_covariance,
     position_ellipsoid, position_mean_second_order, surface_grid, to_ellipsoid, LiftSurface,
-    Surface, SymmetricEigen,
+    Surface,
 };
 use ppoe::{se3, Mat3, Mat6, Matrix, Real, Transform, Vec3, Vec6, Vector};
 use proptest::collection::vec;
@@ -323,7 +324,7 @@ fn prop_lift_first_order<T: Real>(
     let scale = r64(mean.translation.norm()) + 1.0;
     for i in 0..n_steps {
         for j in 0..n_steps {
-            let u = ppoe::ellipsoid::unit_sphere_point::<T>(n_steps, i, j);
+            let u = ppoe::surface::unit_sphere_point::<T>(n_steps, i, j);
             let xi = map.perturbation(&u.scale(T::lit(k)));
             let (w, v) = (r64(xi.rotation().norm()), r64(xi.translation().norm()));
             if w > 2.0 {
@@ -870,7 +871,7 @@ fn grid_matches_unit_sphere_point() {
                 assert_eq!(written, n * n);
                 for i in 0..n {
                     for j in 0..n {
-                        let u = ppoe::ellipsoid::unit_sphere_point::<T>(n, i, j);
+                        let u = ppoe::surface::unit_sphere_point::<T>(n, i, j);
                         assert!(
                             out[i * n + j] == u,
                             "n {n} ({i}, {j}): {:?} vs {u:?}",
@@ -890,4 +891,26 @@ fn grid_matches_unit_sphere_point() {
     }
     check::<f32>();
     check::<f64>();
+}
+
+/// Every surface function: fewer than 2 grid steps is `GridSize`, a buffer below n² points
+/// `BufferTooSmall`; both checked before the covariance is looked at.
+#[test]
+fn grid_arguments_are_checked() {
+    let mean = Transform::<f64>::identity();
+    let cov = Mat6::<f64>::identity() * 1e-4;
+    let mut buf = [Vec3::<f64>::zeros(); 9];
+    for s in [Surface::Lift, Surface::Marginal, Surface::Pytransform3d] {
+        for n in [0, 1] {
+            let r = surface_grid(s, &mean, &cov, 1.0, n, &mut buf);
+            assert_eq!(r, Err(ppoe::Error::GridSize), "{s:?} n_steps = {n}");
+        }
+        let r = surface_grid(s, &mean, &cov, 1.0, 4, &mut buf);
+        assert_eq!(r, Err(ppoe::Error::BufferTooSmall), "{s:?}");
+        assert_eq!(
+            surface_grid(s, &mean, &cov, 1.0, 3, &mut buf),
+            Ok(9),
+            "{s:?}"
+        );
+    }
 }

@@ -1,5 +1,5 @@
 //! Golden tests of the PPOE on our test robots, against `test_data/reference/generate_ppoe.py`
-//! (pytransform3d 3.17.0's example, MATH.md §5): the pytransform3d-compatible variant must
+//! (pytransform3d 3.17.0's example `ProbabilisticRobotKinematics`): the pytransform3d-compatible variant must
 //! reproduce the example's pose and covariance; the right and left conventions must match
 //! `Ad(M⁻¹)·C·Ad(M⁻¹)ᵀ` and `Ad(T̄)·Σ_R·Ad(T̄)ᵀ` computed by the oracle script from the
 //! same C.
@@ -10,7 +10,7 @@
 
 mod common;
 use common::*;
-use ppoe::chain::{ChainRef, Convention};
+use ppoe::chain::{ChainView, Convention};
 use ppoe::uncertainty::check_covariance;
 use ppoe::{Mat6, Real, Vec6, Vector};
 
@@ -29,9 +29,9 @@ fn run<T: Real>(bound: f64, file: &str, prepared: bool) {
     let (mut joints, home) = chain_from_golden::<T>(&g);
     if prepared {
         joints = joints.into_iter().map(|j| j.prepared()).collect();
-        assert!(joints.iter().any(|j| j.constants.is_some()));
+        assert!(joints.iter().any(|j| j.constants().is_some()));
     }
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };

@@ -5,7 +5,7 @@
 
 mod common;
 use common::*;
-use ppoe::chain::{ChainRef, Convention};
+use ppoe::chain::{ChainView, Convention};
 use ppoe::uncertainty;
 use ppoe::{se3, Mat6, Transform, Vec3, Vec6, Vector};
 use rand::SeedableRng;
@@ -62,7 +62,7 @@ fn concat_locally_matches_sampling() {
 
 /// Samples the PPOE model and returns the right perturbations η = Log(T̄⁻¹·T).
 fn sample_chain(
-    chain: &ChainRef<f64>,
+    chain: &ChainView<f64>,
     thetas: &[f64],
     covs: &[Mat6<f64>],
     seed: u64,
@@ -86,7 +86,7 @@ fn frame(k: usize) -> Vec<f64> {
 #[test]
 fn ppoe_right_convention_matches_sampling_on_seed_robot() {
     let (joints, home) = seed_chain();
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };
@@ -116,7 +116,7 @@ fn ppoe_right_convention_matches_sampling_on_seed_robot() {
 #[test]
 fn fourth_order_ppoe_is_closer_at_large_noise() {
     let (joints, home) = seed_chain();
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };
@@ -140,11 +140,11 @@ fn fourth_order_ppoe_is_closer_at_large_noise() {
 }
 
 /// The second-order mean of the tool position predicts the sampled mean, which on the seed
-/// robot at its noise sits about 0.10 m from the rigid tool position (MATH.md §8).
+/// robot at its noise sits about 0.10 m from the rigid tool position (printed below).
 #[test]
 fn second_order_mean_of_tool_position() {
     let (joints, home) = seed_chain();
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };
@@ -157,7 +157,7 @@ fn second_order_mean_of_tool_position() {
         mean += (tip.pose * se3::exp(eta)).translation;
     }
     mean = mean.scale(1.0 / etas.len() as f64);
-    let predicted = ppoe::ellipsoid::position_mean_second_order(&tip.pose, &tip.cov);
+    let predicted = ppoe::surface::position_mean_second_order(&tip.pose, &tip.cov);
     let shift = (mean - tip.pose.translation).norm();
     let miss = (mean - predicted).norm();
     // Standard error of the sampled mean: √(tr Cov(position) / N).
@@ -169,7 +169,7 @@ fn second_order_mean_of_tool_position() {
     let se = (var / etas.len() as f64).sqrt();
     println!("sampled mean {shift:.4} m from t̄; second-order mean misses it by {miss:.4} m (standard error {se:.4} m)");
     assert!(shift > 0.05, "{shift}");
-    // The neglected fourth-order terms are ≈ 5 mm here (MATH.md §8): the prediction must
+    // The neglected fourth-order terms are ≈ 5 mm here: the prediction must
     // explain over 90 % of the shift, and miss by less than 5 mm plus 3 standard errors.
     assert!(miss < 0.005 + 3.0 * se, "{miss}");
 }

@@ -5,7 +5,7 @@
 //!    with the runtime chain from `ppoe-build` and the same `ppoe` crate, written as consts;
 //! 3. the `memory.x` of the QEMU board for `$TARGET`, and `-Tlink.x` for the binary.
 
-use ppoe::chain::{ChainRef, Convention};
+use ppoe::chain::{ChainView, Convention};
 use ppoe::Mat6;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -149,7 +149,7 @@ fn main() {
     let robot = cfg.chain().unwrap_or_else(|e| panic!("ppoe-build: {e}"));
     let joints = robot.to_core_joints();
     assert_eq!(joints.len(), N, "the seed robot has 6 moving joints");
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home: robot.home_transform(),
     };

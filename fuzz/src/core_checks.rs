@@ -2,8 +2,8 @@
 
 use crate::*;
 use arbitrary::Arbitrary;
-use ppoe::chain::{ChainRef, Convention, Joint, JointKind};
-use ppoe::ellipsoid::SymmetricEigen;
+use ppoe::chain::{ChainView, Convention, Joint, JointKind};
+use ppoe::linalg::SymmetricEigen;
 use ppoe::uncertainty::{self, check_covariance, IterationOptions, Order};
 use ppoe::{se3, Error};
 use std::hint::black_box;
@@ -158,7 +158,7 @@ pub fn run<T: Fz>(inp: &CoreInput) {
     black_box(uncertainty::concat_locally(&t1, &t2, &c1, &c2));
     black_box(uncertainty::invert(&t1, &c1));
     black_box(uncertainty::left_to_right(&t1, &c1));
-    black_box(ppoe::ellipsoid::position_mean_second_order(&t1, &c1));
+    black_box(ppoe::surface::position_mean_second_order(&t1, &c1));
     black_box(se3::screw_axis(&xi.rotation(), &xi.translation(), c1.0[0][0]).ok());
     black_box(ppoe::chain::screw_noise(&xi, c1.0[1][1]));
     black_box(ppoe::chain::bending_noise(&xi.translation(), &c1.block(0, 0)));
@@ -230,7 +230,7 @@ pub fn run<T: Fz>(inp: &CoreInput) {
     }
     let home: Transform<T> = inp.home.get();
     chain_valid &= transform_valid(&home);
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints[..n],
         home,
     };

@@ -2,7 +2,8 @@
 
 use crate::*;
 use arbitrary::Arbitrary;
-use ppoe::ellipsoid::{self, SymmetricEigen};
+use ppoe::linalg::SymmetricEigen;
+use ppoe::surface;
 use ppoe::uncertainty::check_covariance;
 use ppoe::Error;
 use std::hint::black_box;
@@ -108,9 +109,9 @@ pub fn run<T: Fz>(inp: &EigenInput) {
     type Surf<T> =
         fn(&Transform<T>, &Mat6<T>, T, usize, &mut [Vec3<T>]) -> Result<usize, Error>;
     let surfaces: [(&str, Surf<T>); 3] = [
-        ("to_projected_ellipsoid", ellipsoid::to_projected_ellipsoid),
-        ("lift_surface", ellipsoid::lift_surface),
-        ("marginal_surface", ellipsoid::marginal_surface),
+        ("to_projected_ellipsoid", surface::to_projected_ellipsoid),
+        ("lift_surface", surface::lift_surface),
+        ("marginal_surface", surface::marginal_surface),
     ];
     for (what, f) in surfaces {
         buf.iter_mut().for_each(|p| *p = Vec3::zeros());
@@ -120,7 +121,7 @@ pub fn run<T: Fz>(inp: &EigenInput) {
             assert!(r.is_err(), "{what} ({}): Ok for bad arguments", T::NAME);
         }
         if inputs_finite && n_steps < 2 {
-            assert_eq!(r, Err(Error::TooFewSamples), "{what} ({})", T::NAME);
+            assert_eq!(r, Err(Error::GridSize), "{what} ({})", T::NAME);
         } else if inputs_finite && needed > buf.len() {
             assert_eq!(r, Err(Error::BufferTooSmall), "{what} ({})", T::NAME);
         } else if grid_ok && !inputs_finite {
@@ -142,7 +143,7 @@ pub fn run<T: Fz>(inp: &EigenInput) {
         }
     }
     let mean3: Vec3<T> = mean.translation;
-    match ellipsoid::to_ellipsoid(&mean3, &m3) {
+    match surface::to_ellipsoid(&mean3, &m3) {
         Ok((t, radii)) => {
             assert!(mean3.is_finite() && m3.is_finite());
             if mat_amax(&m3).to_f64() <= T::BOUND * T::BOUND {
@@ -156,7 +157,7 @@ pub fn run<T: Fz>(inp: &EigenInput) {
             T::NAME
         ),
     }
-    black_box(ellipsoid::position_ellipsoid(&mean, &m6).ok());
-    black_box(ellipsoid::chi2_3_probability(k));
-    black_box(ellipsoid::chi2_3_radius(k));
+    black_box(surface::position_ellipsoid(&mean, &m6).ok());
+    black_box(surface::chi2_3_probability(k));
+    black_box(surface::chi2_3_radius(k));
 }

@@ -330,7 +330,7 @@ impl<T: Fz> BitsEq for T {
 pub fn assert_cov<T: Fz, const N: usize>(what: &str, c: &Matrix<T, N, N>) {
     assert_sym(what, c);
     if let Err(e) = ppoe::uncertainty::check_covariance(c) {
-        let eig = ppoe::ellipsoid::SymmetricEigen::new(c).map(|e| e.values);
+        let eig = ppoe::linalg::SymmetricEigen::new(c).map(|e| e.values);
         panic!(
             "{what} ({}): output covariance fails check_covariance: {e:?}; eigenvalues {eig:?}; {c:?}",
             T::NAME

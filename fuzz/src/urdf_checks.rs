@@ -1,6 +1,6 @@
 //! The `urdf` oracle: parse, extract chains, generate tables, evaluate the PPOE.
 
-use ppoe::chain::{ChainRef, Convention, Joint};
+use ppoe::chain::{ChainView, Convention, Joint};
 use ppoe::linalg::Mat6;
 use ppoe_build::codegen::{self, Scalar, Source};
 use ppoe_build::Urdf;
@@ -90,7 +90,7 @@ pub fn run(data: &[u8]) {
             home.translation.is_finite() && home.rotation.is_finite(),
             "home pose not finite: {home:?}"
         );
-        let rchain = ChainRef { joints: &joints, home };
+        let rchain = ChainView { joints: &joints, home };
         let zeros = vec![0.0; joints.len()];
         let covs = vec![Mat6::<f64>::identity() * 1e-4; joints.len()];
         // "Finite geometry": every screw and home value within 1e100 (larger ones may

@@ -218,7 +218,7 @@ type Constants = (f64, [[f64; 3]; 6]);
 fn table_joint<T: ppoe::Real>(j: &ChainJoint) -> ([f64; 6], Option<Constants>) {
     let joint = Joint::<T>::from_f64(&Joint::new("", j.kind, j.screw, j.lower, j.upper));
     let wide = |v: [T; 3]| v.map(<T as ppoe::Real>::to_f64);
-    let constants = joint.constants.map(|k| {
+    let constants = joint.constants().map(|k| {
         let vectors = [
             k.axis,
             k.axis_sq,

@@ -258,7 +258,7 @@ fn every_f64_value_is_written_in_round_trip_form() {
         expected.push(j.upper);
         // The displacement constants, as `Joint::from_f64` computes them at run time.
         let raw = ppoe::chain::Joint::new("", j.kind, j.screw, j.lower, j.upper);
-        if let Some(k) = ppoe::chain::Joint::<f64>::from_f64(&raw).constants {
+        if let Some(k) = ppoe::chain::Joint::<f64>::from_f64(&raw).constants() {
             expected.push(k.scale);
             for a in [
                 k.axis,

@@ -7,7 +7,7 @@ use crate::names::shown;
 use crate::picture::Frame;
 use crate::{eval, load, output, ChainArgs, SurfaceArgs};
 use anyhow::{bail, Context};
-use ppoe::chain::{ChainRef, Convention};
+use ppoe::chain::{ChainView, Convention};
 use ppoe::Mat6;
 use std::path::Path;
 
@@ -115,7 +115,7 @@ pub fn run(
     let home_frames = robot.chain.home_frames();
     let visuals = draw::robot_visuals(&robot, &chain_args.urdf)?;
     let (joints, home) = eval::core_joints::<f64>(&robot.chain);
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };

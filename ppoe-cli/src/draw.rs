@@ -7,8 +7,8 @@ use crate::picture::{self, Frame};
 use crate::visuals::Visuals;
 use crate::{seed, SurfaceArg, SurfaceArgs};
 use anyhow::{bail, Context};
-use ppoe::chain::{ChainRef, Convention};
-use ppoe::ellipsoid::{self, Surface};
+use ppoe::chain::{ChainView, Convention};
+use ppoe::surface::{self, Surface};
 use ppoe::{Mat6, Transform, Vec3};
 use std::io::{IsTerminal, Write};
 
@@ -24,7 +24,7 @@ pub fn level(args: &SurfaceArgs) -> anyhow::Result<(f64, String)> {
             if !(p > 0.0 && p < 1.0) {
                 bail!("--probability {p}: expected a probability strictly between 0 and 1");
             }
-            let k = ellipsoid::chi2_3_radius(p)
+            let k = surface::chi2_3_radius(p)
                 .with_context(|| format!("--probability {p}: no radius"))?;
             (k, p)
         }
@@ -33,7 +33,7 @@ pub fn level(args: &SurfaceArgs) -> anyhow::Result<(f64, String)> {
             if !(k.is_finite() && k > 0.0) {
                 bail!("--sigma {k}: expected a positive number of standard deviations");
             }
-            (k, ellipsoid::chi2_3_probability(k))
+            (k, surface::chi2_3_probability(k))
         }
     };
     let what = match args.surface {
@@ -65,7 +65,7 @@ pub struct State {
 #[allow(clippy::too_many_arguments)]
 pub fn state(
     title: String,
-    chain: &ChainRef<'_, f64>,
+    chain: &ChainView<'_, f64>,
     home_frames: &[Mat4],
     thetas: &[f64],
     covs: &[Mat6<f64>],
@@ -105,13 +105,13 @@ pub fn state(
         SurfaceArg::Marginal => (Surface::Marginal, right.pose, right.cov),
         SurfaceArg::Pytransform3d => (Surface::Pytransform3d, compat.pose, compat.cov),
     };
-    ellipsoid::surface_grid(s, &mean, &cov, k, grid, &mut grid_pts)
+    surface::surface_grid(s, &mean, &cov, k, grid, &mut grid_pts)
         .map_err(|e| anyhow::anyhow!("the surface: {e}"))?;
     let surface_rows = grid_pts
         .chunks(grid)
         .map(|row| row.iter().map(|v| v.0).collect())
         .collect();
-    let mean2 = ellipsoid::position_mean_second_order(&right.pose, &right.cov).0;
+    let mean2 = surface::position_mean_second_order(&right.pose, &right.cov).0;
     Ok(State {
         frame: Frame {
             title,

@@ -1,9 +1,9 @@
 //! `ppoe eval`: the PPOE for the cases of a JSON file, through the runtime path a host
-//! tool gets (`ChainRef` over the joints `ppoe-build` computes, `ppoe_checked`).
+//! tool gets (`ChainView` over the joints `ppoe-build` computes, `ppoe_checked`).
 
 use crate::EvalScalar;
 use anyhow::bail;
-use ppoe::chain::{ChainRef, Convention, Joint};
+use ppoe::chain::{ChainView, Convention, Joint};
 use ppoe::{Mat6, Real, Transform};
 use ppoe_build::RobotChain;
 use serde::{Deserialize, Serialize};
@@ -154,7 +154,7 @@ pub fn core_joints<T: Real>(robot: &RobotChain) -> (Vec<Joint<T>>, Transform<T>)
 /// The mean pose and covariance of one case (already count-checked), in scalar T, with
 /// the clipped joint values; errors name the case and the joint.
 pub fn eval_case<T: Real>(
-    chain: &ChainRef<'_, T>,
+    chain: &ChainView<'_, T>,
     index: usize,
     case: &Case,
     convention: Convention,
@@ -205,7 +205,7 @@ fn eval_cases<T: Real>(
 ) -> anyhow::Result<Vec<CaseOut>> {
     check_counts(robot, input)?;
     let (joints, home) = core_joints::<T>(robot);
-    let chain = ChainRef {
+    let chain = ChainView {
         joints: &joints,
         home,
     };

@@ -24,9 +24,9 @@ pub struct RandomTable {
     /// The tip link.
     pub tip: &'static str,
     /// The f64 table.
-    pub f64: ppoe::chain::ChainRef<'static, f64>,
+    pub f64: ppoe::chain::ChainView<'static, f64>,
     /// The f32 table, when every value fits in f32.
-    pub f32: Option<ppoe::chain::ChainRef<'static, f32>>,
+    pub f32: Option<ppoe::chain::ChainView<'static, f32>>,
 }
 
 #[allow(missing_docs, clippy::all)] // generated: every table has its own doc comment

@@ -4,7 +4,7 @@
 
 #![allow(clippy::needless_range_loop)] // index loops read best for matrices
 
-use ppoe::chain::{Chain, ChainRef, Convention, Joint};
+use ppoe::chain::{Chain, ChainView, Convention, Joint};
 use ppoe::{Mat6, Real, Transform};
 use ppoe_build::{ChainJoint, Config, RobotChain, Urdf};
 use tests_build::{GANTRY_F32, RANDOM, RANDOM_REJECTED, SEED, SEED_F32, SEED_IN_FLASH, TORSO};
@@ -44,7 +44,7 @@ fn expected_home<T: Real>(chain: &RobotChain) -> [[T; 4]; 4] {
 }
 
 /// The joints and home pose of a table hold bit for bit the run-time values in scalar T.
-fn assert_values<T: Real>(table: &ChainRef<T>, chain: &RobotChain) {
+fn assert_values<T: Real>(table: &ChainView<T>, chain: &RobotChain) {
     assert_eq!(table.joints.len(), chain.joints.len());
     for (t, c) in table.joints.iter().zip(&chain.joints) {
         let e = expected::<T>(c);
@@ -84,14 +84,14 @@ fn assert_values<T: Real>(table: &ChainRef<T>, chain: &RobotChain) {
 }
 
 /// f64 tables: as [`assert_values`], and the same as building the core joints at run time.
-fn assert_f64_values(table: &ChainRef<f64>, chain: &RobotChain) {
+fn assert_f64_values(table: &ChainView<f64>, chain: &RobotChain) {
     assert_values(table, chain);
     let joints: Vec<Joint<f64>> = chain.to_core_joints();
     assert_eq!(joints.as_slice(), table.joints);
     assert_eq!(chain.home_transform(), table.home);
 }
 
-fn assert_f32_values(table: &ChainRef<f32>, chain: &RobotChain) {
+fn assert_f32_values(table: &ChainView<f32>, chain: &RobotChain) {
     assert_values(table, chain);
 }
 
@@ -187,7 +187,7 @@ fn random_robot_tables_equal_the_runtime_chain() {
             .map(|j| ppoe::chain::screw_noise(&j.screw, 1e-4))
             .collect();
         let core_joints = chain.to_core_joints();
-        let runtime = ChainRef {
+        let runtime = ChainView {
             joints: &core_joints,
             home: chain.home_transform(),
         };

@@ -295,7 +295,8 @@ pub fn chain_from_golden<T: ppoe::Real>(g: &Value) -> (Vec<ppoe::chain::Joint<T>
     (joints, cast_t(&transform(&g["home"])))
 }
 
-/// The seed example's joint covariances (MATH.md §5.3) scaled by `scale`: 0.05 rad² about
+/// The seed example's joint covariances (pytransform3d's PPOE example, as
+/// `test_data/reference/generate_ppoe.py` uses them) scaled by `scale`: 0.05 rad² about
 /// the base z axis for joint 1 and about the base y axis for joints 2, 3 and 5.
 pub fn seed_covs(scale: f64) -> Vec<Mat6<f64>> {
     let z = Mat6::from_diagonal(&Vector([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]));
@@ -306,7 +307,8 @@ pub fn seed_covs(scale: f64) -> Vec<Mat6<f64>> {
         .collect()
 }
 
-/// The seed animation's joint values at frame k (MATH.md §5.3).
+/// The seed animation's joint values at frame k (pytransform3d's PPOE example, as
+/// `test_data/reference/generate_ppoe.py` computes them).
 pub fn seed_frame(k: usize) -> Vec<f64> {
     let angle = 0.5 * (2.0 * std::f64::consts::PI * (0.5 + k as f64 / 200.0)).cos();
     [1.0, 1.0, 1.0, 0.0, 1.0, 0.0]
@@ -325,7 +327,7 @@ pub struct ChainModel {
 impl ChainModel {
     /// `sampler` is [`Gaussian6::new`] or [`Gaussian6::box_muller`].
     pub fn new(
-        chain: &ppoe::chain::ChainRef<f64>,
+        chain: &ppoe::chain::ChainView<f64>,
         thetas: &[f64],
         covs: &[Mat6<f64>],
         sampler: fn(&Mat6<f64>) -> Gaussian6,
@@ -353,7 +355,7 @@ impl ChainModel {
 /// `n` draws of the PPOE model `T = D₁Exp(ξ₁)…DₙExp(ξₙ)·M`, ξᵢ ~ N(0, covsᵢ), with a
 /// fixed seed.
 pub fn sample_chain_poses(
-    chain: &ppoe::chain::ChainRef<f64>,
+    chain: &ppoe::chain::ChainView<f64>,
     thetas: &[f64],
     covs: &[Mat6<f64>],
     seed: u64,

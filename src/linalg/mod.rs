@@ -6,6 +6,14 @@
 //! All loops have compile-time bounds, so indexing cannot panic and is unrolled by the
 //! optimiser.
 
+mod approx_eq;
+mod cholesky;
+mod eigen;
+
+pub(crate) use approx_eq::approx_fields;
+pub(crate) use eigen::symmetric_part;
+pub use eigen::{SymmetricEigen, MAX_SWEEPS};
+
 use crate::scalar::Real;
 use core::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 
@@ -115,9 +123,9 @@ impl<T: Real, const N: usize> Vector<T, N> {
     ///
     /// Such an element changes no result by more than ε² relative to the largest one, far
     /// below the rounding of any input, but its products with other small values land in the
-    /// subnormal range, where x86 cores take a slow path (≈ 100 cycles per operation):
-    /// the f32 seed robot's `−1.9·10⁻²³` screw entries made its forward kinematics 1.4×
-    /// slower. Unchanged if `amax` is zero or not finite.
+    /// subnormal range, where x86 cores take a slow microcode path (as the f32 seed
+    /// robot's `−1.9·10⁻²³` screw entries did). Unchanged if `amax` is zero or not
+    /// finite.
     pub fn without_negligible(self) -> Self {
         let m = self.amax();
         if !m.is_finite() || m == T::ZERO {
@@ -407,75 +415,6 @@ impl<T: Real, const N: usize> Matrix<T, N, N> {
         }
         out
     }
-
-    /// Cholesky factor L (lower triangular, `self = L Lᵀ`) of a symmetric positive
-    /// definite matrix; `None` if a pivot is not positive or not finite.
-    ///
-    /// Method: the Cholesky–Banachiewicz recurrence (Golub & Van Loan, Alg. 4.2.1); only
-    /// the lower triangle of `self` is read.
-    pub fn cholesky(&self) -> Option<Self> {
-        let mut l = Self::zeros();
-        for i in 0..N {
-            for j in 0..=i {
-                let mut s = self.0[i][j];
-                for k in 0..j {
-                    s -= l.0[i][k] * l.0[j][k];
-                }
-                if i == j {
-                    if s.is_nan() || s <= T::ZERO || !s.is_finite() {
-                        return None;
-                    }
-                    l.0[i][i] = s.sqrt();
-                } else {
-                    l.0[i][j] = s / l.0[j][j];
-                }
-            }
-        }
-        Some(l)
-    }
-
-    /// Solves `self · x = b` for symmetric positive definite `self` (Cholesky);
-    /// `None` if `self` is not positive definite.
-    pub fn solve_spd(&self, b: &Vector<T, N>) -> Option<Vector<T, N>> {
-        let l = self.cholesky()?;
-        Some(cholesky_solve(&l, b))
-    }
-
-    /// Inverse of a symmetric positive definite matrix (Cholesky), exactly symmetric;
-    /// `None` if not positive definite.
-    pub fn inverse_spd(&self) -> Option<Self> {
-        let l = self.cholesky()?;
-        let mut inv = Self::zeros();
-        for j in 0..N {
-            let mut e = Vector::zeros();
-            e.0[j] = T::ONE;
-            let col = cholesky_solve(&l, &e);
-            for i in 0..N {
-                inv.0[i][j] = col.0[i];
-            }
-        }
-        Some(inv.symmetrize())
-    }
-}
-
-/// Forward and back substitution with a Cholesky factor.
-fn cholesky_solve<T: Real, const N: usize>(l: &Matrix<T, N, N>, b: &Vector<T, N>) -> Vector<T, N> {
-    let mut y = *b;
-    for i in 0..N {
-        let mut s = y.0[i];
-        for k in 0..i {
-            s -= l.0[i][k] * y.0[k];
-        }
-        y.0[i] = s / l.0[i][i];
-    }
-    for i in (0..N).rev() {
-        let mut s = y.0[i];
-        for k in i + 1..N {
-            s -= l.0[k][i] * y.0[k];
-        }
-        y.0[i] = s / l.0[i][i];
-    }
-    y
 }
 
 impl<T: Real> Mat3<T> {
@@ -622,85 +561,6 @@ impl<T, const R: usize, const C: usize> From<Matrix<T, R, C>> for [[T; C]; R] {
         m.0
     }
 }
-
-/// Element-wise approximate equality (`approx`), for vectors and matrices.
-macro_rules! approx_impls {
-    ($ty:ident < $($c:ident),+ >, $iter:expr) => {
-        impl<T: Real, $(const $c: usize),+> approx::AbsDiffEq for $ty<T, $($c),+> {
-            type Epsilon = T;
-            fn default_epsilon() -> T {
-                T::default_epsilon()
-            }
-            fn abs_diff_eq(&self, other: &Self, epsilon: T) -> bool {
-                $iter(self).zip($iter(other)).all(|(a, b)| T::abs_diff_eq(a, b, epsilon))
-            }
-        }
-        impl<T: Real, $(const $c: usize),+> approx::RelativeEq for $ty<T, $($c),+> {
-            fn default_max_relative() -> T {
-                T::default_max_relative()
-            }
-            fn relative_eq(&self, other: &Self, epsilon: T, max_relative: T) -> bool {
-                $iter(self)
-                    .zip($iter(other))
-                    .all(|(a, b)| T::relative_eq(a, b, epsilon, max_relative))
-            }
-        }
-        impl<T: Real, $(const $c: usize),+> approx::UlpsEq for $ty<T, $($c),+> {
-            fn default_max_ulps() -> u32 {
-                T::default_max_ulps()
-            }
-            fn ulps_eq(&self, other: &Self, epsilon: T, max_ulps: u32) -> bool {
-                $iter(self).zip($iter(other)).all(|(a, b)| T::ulps_eq(a, b, epsilon, max_ulps))
-            }
-        }
-    };
-}
-
-/// `approx` traits for a struct compared field by field (each field already implements
-/// them with `Epsilon = T`).
-macro_rules! approx_fields {
-    ([$($gen:tt)*] $ty:ty { $($f:ident),+ }) => {
-        impl<$($gen)*> approx::AbsDiffEq for $ty {
-            type Epsilon = T;
-            fn default_epsilon() -> T {
-                T::default_epsilon()
-            }
-            fn abs_diff_eq(&self, other: &Self, epsilon: T) -> bool {
-                true $(&& self.$f.abs_diff_eq(&other.$f, epsilon))+
-            }
-        }
-        impl<$($gen)*> approx::RelativeEq for $ty {
-            fn default_max_relative() -> T {
-                T::default_max_relative()
-            }
-            fn relative_eq(&self, other: &Self, epsilon: T, max_relative: T) -> bool {
-                true $(&& self.$f.relative_eq(&other.$f, epsilon, max_relative))+
-            }
-        }
-        impl<$($gen)*> approx::UlpsEq for $ty {
-            fn default_max_ulps() -> u32 {
-                T::default_max_ulps()
-            }
-            fn ulps_eq(&self, other: &Self, epsilon: T, max_ulps: u32) -> bool {
-                true $(&& self.$f.ulps_eq(&other.$f, epsilon, max_ulps))+
-            }
-        }
-    };
-}
-pub(crate) use approx_fields;
-
-fn vec_iter<T, const N: usize>(v: &Vector<T, N>) -> core::slice::Iter<'_, T> {
-    v.0.iter()
-}
-
-fn mat_iter<T, const R: usize, const C: usize>(
-    m: &Matrix<T, R, C>,
-) -> core::iter::Flatten<core::slice::Iter<'_, [T; C]>> {
-    m.0.iter().flatten()
-}
-
-approx_impls!(Vector<N>, vec_iter);
-approx_impls!(Matrix<R, C>, mat_iter);
 
 #[cfg(test)]
 mod tests {

@@ -1,187 +1,22 @@
-//! The scalar abstraction: one trait, [`Real`], implemented for `f32` and `f64`.
-//!
-//! Every algorithm in this crate is written once, generically over [`Real`]. The trait
-//! carries the precision-dependent constants (series cut-offs, near-π thresholds,
-//! tolerances), each derived from the type's machine epsilon, so that `f32` users do not
-//! inherit thresholds tuned for `f64` (the failure mode of manif #216 and Sophus #254).
-//! It is also the single place where the elementary functions (sin, cos, sqrt, atan2)
-//! are chosen per precision.
+//! Sine and cosine for the two scalars: libm's `sincos` for f64 with its common branch
+//! inlined, and an f32-native implementation (no f64 arithmetic, which Cortex-M4F cores
+//! emulate in software).
 
-use core::fmt::{Debug, Display};
-use core::ops::{AddAssign, DivAssign, MulAssign, SubAssign};
-use num_traits::{Float, FloatConst};
-
-/// Whether the target has 128-bit SIMD registers for floats (see
-/// [`Real::TRANSPORT_LANES`]).
-const SIMD128: bool = cfg!(any(
-    target_feature = "sse2",
-    target_feature = "neon",
-    target_feature = "simd128"
-));
-
-mod sealed {
-    pub trait Sealed {}
-    impl Sealed for f32 {}
-    impl Sealed for f64 {}
-}
-
-/// A floating-point scalar: `f32` or `f64`.
-///
-/// The trait is sealed: the constants below are tuned and tested for these two types.
-///
-/// | constant | f64 | f32 | derivation |
-/// |---|---|---|---|
-/// | [`EPS`](Real::EPS) | 2⁻⁵² | 2⁻²³ | machine epsilon |
-/// | [`SERIES`](Real::SERIES) | 2⁻¹³ | 2⁻⁶ | ≈ ε^¼: below it the 3-term Taylor series of the SO(3)/SE(3) coefficients is exact to ε |
-/// | [`NEAR_PI`](Real::NEAR_PI) | 10⁻⁶ | 5·10⁻³ | ≈ ε^⅓: balances the ε/δ error of the skew-part axis against the δ² term of the symmetric-part axis at angle π − δ |
-/// | [`TOL`](Real::TOL) | ≈1.5·10⁻⁸ | ≈3.5·10⁻⁴ | √ε: default relative tolerance of the input checks |
-pub trait Real:
-    Float
-    + FloatConst
-    + Debug
-    + Display
-    + Default
-    + Send
-    + Sync
-    + 'static
-    + AddAssign
-    + SubAssign
-    + MulAssign
-    + DivAssign
-    + approx::AbsDiffEq<Epsilon = Self>
-    + approx::RelativeEq
-    + approx::UlpsEq
-    + sealed::Sealed
-{
-    /// 0.
-    const ZERO: Self;
-    /// 1.
-    const ONE: Self;
-    /// 2.
-    const TWO: Self;
-    /// 0.5.
-    const HALF: Self;
-    /// Machine epsilon (the difference between 1 and the next larger number).
-    const EPS: Self;
-    /// Angle below which exp/log/Jacobian coefficients use their Taylor series (≈ ε^¼).
-    const SERIES: Self;
-    /// Distance from π below which the SO(3) logarithm takes the axis from the symmetric
-    /// part of R instead of the skew part (≈ ε^⅓; f64 uses pytransform3d's 10⁻⁶).
-    const NEAR_PI: Self;
-    /// Default relative tolerance of the checked entry points (√ε): symmetry and
-    /// positive semi-definiteness of covariances, orthonormality of rotations.
-    const TOL: Self;
-
-    /// How many independent covariance transports the PPOE computes side by side, one per
-    /// SIMD lane: 2 where the target has 128-bit vectors (SSE2, NEON, wasm simd128), else 1
-    /// (Cortex-M: scalar FPU). Only the instruction schedule depends on it; each
-    /// transport's operations are the same. f32 uses 2 lanes too, not the 4 a register
-    /// holds: 4 lanes were slower on x86-64, on the seed robot and on the synthetic chains,
-    /// each time they were tried (gathering four transports' values into lanes, and four
-    /// joints' work in flight, cost more than the halved arithmetic saves).
-    const TRANSPORT_LANES: usize;
-
-    /// Converts an `f64` constant to this type (rounding to nearest for `f32`).
-    fn lit(x: f64) -> Self;
-
-    /// Converts to `f64` (exact for both types).
-    fn to_f64(self) -> f64;
-
-    /// Converts a small count to this type (exact up to 2²⁴).
-    fn from_usize(n: usize) -> Self;
-
-    /// Sine and cosine of `self`.
-    ///
-    /// Method and accuracy: libm's `sin`/`cos` (musl/FreeBSD, < 1 ulp).
-    #[inline]
-    fn sin_cos_r(self) -> (Self, Self) {
-        Float::sin_cos(self)
-    }
-}
-
-impl Real for f64 {
-    const ZERO: f64 = 0.0;
-    const ONE: f64 = 1.0;
-    const TWO: f64 = 2.0;
-    const HALF: f64 = 0.5;
-    const EPS: f64 = f64::EPSILON;
-    const SERIES: f64 = 1.220_703_125e-4; // 2^-13 ≈ eps^(1/4) = 1.22e-4
-    const NEAR_PI: f64 = 1e-6; // eps^(1/3) = 6.1e-6; pytransform3d's value, same order
-    const TOL: f64 = 1.490_116_119_384_765_6e-8; // sqrt(eps) = 2^-26
-    const TRANSPORT_LANES: usize = if SIMD128 { 2 } else { 1 };
-
-    #[inline]
-    fn lit(x: f64) -> f64 {
-        x
-    }
-    #[inline]
-    fn to_f64(self) -> f64 {
-        self
-    }
-    #[inline]
-    fn from_usize(n: usize) -> f64 {
-        n as f64
-    }
-
-    /// libm's `sincos` (FreeBSD msun; one shared range reduction; < 1 ulp), bit for bit:
-    /// its |x| ≤ π/4 branch (every joint angle of a typical arm) is inlined here, the
-    /// rest stays a call. The call clobbers every SSE register, so the caller spilled its
-    /// live values around each joint's sin/cos; inlined, the polynomials also overlap the
-    /// neighbouring joints' work (f64 PPOE ≈ 10 % faster on x86-64).
-    #[inline(always)]
-    fn sin_cos_r(self) -> (f64, f64) {
-        // libm's own tests on the high word: |x| ≲ π/4 goes to the kernels, and below
-        // 2⁻²⁷·√2 libm returns (x, 1) (both exact to rounding; θ = 0 is common).
-        let ix = ((self.to_bits() >> 32) as u32) & 0x7fff_ffff;
-        if ix <= 0x3fe9_21fb {
-            if ix < 0x3e46_a09e {
-                (self, 1.0)
-            } else {
-                sin_cos_f64_kernel(self)
-            }
+/// `libm::sincos` bit for bit (see [`Real::sin_cos_r`](crate::Real::sin_cos_r) for `f64`): the |x| ≤ π/4 branch
+/// inlined, the rest a call.
+#[inline(always)]
+pub(super) fn sin_cos_f64(x: f64) -> (f64, f64) {
+    // libm's own tests on the high word: |x| ≲ π/4 goes to the kernels, and below
+    // 2⁻²⁷·√2 libm returns (x, 1) (both exact to rounding; θ = 0 is common).
+    let ix = ((x.to_bits() >> 32) as u32) & 0x7fff_ffff;
+    if ix <= 0x3fe9_21fb {
+        if ix < 0x3e46_a09e {
+            (x, 1.0)
         } else {
-            sin_cos_f64_libm(self)
+            sin_cos_f64_kernel(x)
         }
-    }
-}
-
-impl Real for f32 {
-    const ZERO: f32 = 0.0;
-    const ONE: f32 = 1.0;
-    const TWO: f32 = 2.0;
-    const HALF: f32 = 0.5;
-    const EPS: f32 = f32::EPSILON;
-    const SERIES: f32 = 0.015_625; // 2^-6 ≈ eps^(1/4) = 1.86e-2
-    const NEAR_PI: f32 = 5e-3; // eps^(1/3) = 4.9e-3
-    const TOL: f32 = 3.452_669_8e-4; // sqrt(eps) = 2^-11.5
-    const TRANSPORT_LANES: usize = if SIMD128 { 2 } else { 1 };
-
-    #[inline]
-    fn lit(x: f64) -> f32 {
-        x as f32
-    }
-    #[inline]
-    fn to_f64(self) -> f64 {
-        self as f64
-    }
-    #[inline]
-    fn from_usize(n: usize) -> f32 {
-        n as f32
-    }
-
-    /// f32-native sine and cosine, in f32 and integer arithmetic only (libm's `sinf`/`cosf`
-    /// compute in f64, which an M4F emulates in software at ≈2,500 instructions a call).
-    ///
-    /// Method: for |x| ≤ π/4 the Cephes minimax polynomials for sin and cos (Moshier,
-    /// *Methods and Programs for Mathematical Functions*, 1989) directly; up to |x| = 10⁴
-    /// a Cody–Waite reduction by π/2 with a three-part constant (exact products for
-    /// |k| < 2¹⁵) first; beyond, a Payne–Hanek reduction in 64-bit integers
-    /// (`reduce_pio2_f32`). Accuracy against f64: absolute error ≤ 10⁻⁷ everywhere —
-    /// measured 7.6·10⁻⁸ (0.64 ulp of 1) on a fine sweep of |x| ≤ 10⁴, and 7.9·10⁻⁸ on
-    /// *every* f32 above 10⁴ (an exhaustive test, `--ignored`). NaN and ±∞ give NaN.
-    #[inline(always)]
-    fn sin_cos_r(self) -> (f32, f32) {
-        sin_cos_f32(self)
+    } else {
+        sin_cos_f64_libm(x)
     }
 }
 
@@ -215,7 +50,7 @@ fn sin_cos_f64_kernel(x: f64) -> (f64, f64) {
 }
 
 /// `libm::sincos` out of line: the arguments beyond π/4 and the non-finite ones of
-/// [`Real::sin_cos_r`] for `f64`.
+/// [`Real::sin_cos_r`](crate::Real::sin_cos_r) for `f64`.
 #[inline(never)]
 fn sin_cos_f64_libm(x: f64) -> (f64, f64) {
     libm::sincos(x)
@@ -230,10 +65,10 @@ fn sin_cos_f32_kernel(r: f32) -> (f32, f32) {
     (s, c)
 }
 
-/// See [`Real::sin_cos_r`] for `f32`. Inlined into its callers (a call would clobber
+/// See [`Real::sin_cos_r`](crate::Real::sin_cos_r) for `f32`. Inlined into its callers (a call would clobber
 /// every SSE register of the PPOE loop); only libm's fallback stays a call.
 #[inline(always)]
-fn sin_cos_f32(x: f32) -> (f32, f32) {
+pub(super) fn sin_cos_f32(x: f32) -> (f32, f32) {
     // |x| ≤ π/4 (most joint angles): k = 0, so r = x and quadrant 0 exactly; skipping the
     // reduction gives the same bits with a shorter dependency chain, and this one test
     // (false for NaN) is all such an angle pays.
@@ -346,20 +181,8 @@ fn sin_cos_f32_large(x: f32) -> (f32, f32) {
 #[cfg(test)]
 mod tests {
     extern crate std;
-    use super::Real;
+    use crate::scalar::Real;
     use std::println;
-
-    fn check_derivations<T: Real>() {
-        let eps = T::EPS.to_f64();
-        let series = T::SERIES.to_f64();
-        // Within a factor 2 of eps^(1/4), and the dropped Taylor term t^6/5040 is below eps.
-        assert!(series <= eps.powf(0.25) * 2.0 && series >= eps.powf(0.25) / 2.0);
-        assert!(series.powi(6) / 5040.0 < eps);
-        let near_pi = T::NEAR_PI.to_f64();
-        assert!(near_pi <= 2.0 * eps.cbrt() && near_pi >= eps.cbrt() / 10.0);
-        let tol = T::TOL.to_f64();
-        assert!((tol - eps.sqrt()).abs() / eps.sqrt() < 1e-6);
-    }
 
     #[test]
     fn f32_sin_cos_accuracy() {
@@ -474,7 +297,6 @@ mod tests {
 
     #[test]
     fn f64_sin_cos_is_libm_bit_for_bit() {
-        use super::Real;
         // Across the inlined kernel's range, its edges (2^-27·√2 and π/4, where the branch
         // switches to the libm call) and beyond, both signs.
         let edges = [
@@ -499,11 +321,5 @@ mod tests {
                 assert_eq!(c.to_bits(), lc.to_bits(), "cos({x:e})");
             }
         }
-    }
-
-    #[test]
-    fn constants_follow_epsilon() {
-        check_derivations::<f32>();
-        check_derivations::<f64>();
     }
 }

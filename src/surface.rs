@@ -1,11 +1,9 @@
-//! Symmetric eigen-decomposition and equiprobable surfaces of uncertain poses.
+//! Equiprobable surfaces of uncertain poses: where the tool may be, for people to see.
 //!
-//! * [`SymmetricEigen`]: cyclic Jacobi eigen-decomposition of a symmetric `N`×`N` matrix
-//!   (used with N = 3 and 6), with deterministic ordering and signs.
 //! * [`to_ellipsoid`]: pytransform3d's `to_ellipsoid` (a 3D covariance as a rotated
 //!   ellipsoid).
-//! * [`to_projected_ellipsoid`]: pytransform3d's `to_projected_ellipsoid` (MATH.md §3.9),
-//!   kept for comparison with the reference.
+//! * [`to_projected_ellipsoid`]: pytransform3d's `to_projected_ellipsoid`, kept for
+//!   comparison with the reference.
 //! * The surfaces for people: [`lift_surface`] (the default, [`Surface::Lift`]),
 //!   [`marginal_surface`], the position covariance [`position_covariance`], the
 //!   second-order position mean [`position_mean_second_order`], and the χ²₃ helpers
@@ -30,305 +28,36 @@
 //!
 //! The reference's `to_projected_ellipsoid` keeps the three largest eigenvalues of the
 //! 6×6 covariance whatever their units (rad² or m²) and maps them with a transpose, so on
-//! real robots its axes are mostly rotational; MATH.md §8 measured (200k Monte Carlo
-//! samples of the PPOE's perturbation model) the fraction of sampled tool positions it
-//! encloses at k = 1 / 2 / 3: **0.19 / 0.46 / 0.66** on the seed robot and 0.04 / 0.20 /
-//! 0.37 on a Panda, where a 3D Gaussian gives 0.20 / 0.74 / 0.97. The linear marginal
-//! ellipsoid of the tool position ([`marginal_surface`]) is right at small noise but
-//! encloses only 0.19 / 0.64 / 0.86 on the seed robot, because the sampled cloud bends
-//! (rotational noise moves the tool on arcs). The **lift** surface ([`lift_surface`])
-//! maps each point of the marginal ellipsoid back to its most likely full perturbation
-//! and through the exact exponential, so it bends like the cloud: **0.20 / 0.75 / 0.98**
-//! on the seed robot, as good as the exact image of the 6D ellipsoid (0.20 / 0.75 / 0.98)
-//! at a fraction of the cost (one exp per grid point), and identical to the marginal
-//! ellipsoid at first order. It is therefore the default ([`Surface::default`]). Its
-//! limits: it under-covers somewhat at large noise, and MATH.md §8 measured it on the
-//! seed robot only (the exact 6D image, the better-measured but expensive surface, gives
-//! 0.20 / 0.74 / 0.97 on Panda and 0.21 / 0.74 / 0.95 on xArm6). Use [`chi2_3_radius`] to get k for
-//! a probability: pytransform3d's default factor 1.96 covers only 72 % in 3D, 95 % needs
-//! k = 2.796.
+//! real robots its axes are mostly rotational and it encloses far fewer sampled tool
+//! positions than a 3D Gaussian's 0.20 / 0.74 / 0.97 at k = 1 / 2 / 3 (and its shape
+//! changes with the length unit). The linear marginal ellipsoid of the tool position
+//! ([`marginal_surface`]) is right at small noise but under-covers at the seed robot's
+//! noise, because the sampled cloud bends (rotational noise moves the tool on arcs). The
+//! **lift** surface ([`lift_surface`]) maps each point of the marginal ellipsoid back to
+//! its most likely full perturbation and through the exact exponential, so it bends like
+//! the cloud, at one exp per grid point, and is identical to the marginal ellipsoid at
+//! first order. It is therefore the default ([`Surface::default`]): `tests/coverage.rs`
+//! samples the PPOE's model (10⁵ samples) and checks that the fraction of tool positions
+//! inside the triangulated lift surface is within 0.03 of `chi2_3_probability(k)` for
+//! k = 1, 2, 3 on the seed robot and another test chain. Its limit: it under-covers
+//! somewhat at large noise. Use [`chi2_3_radius`] to get k for a probability:
+//! pytransform3d's default factor 1.96 covers only 72 % in 3D, 95 % needs k = 2.796.
 
 use crate::error::Error;
-use crate::linalg::{Mat3, Mat6, Matrix, Vec3, Vec6, Vector};
+use crate::linalg::{symmetric_part, Mat3, Mat6, Matrix, SymmetricEigen, Vec3, Vec6, Vector};
 use crate::scalar::Real;
 use crate::se3::{self, Transform};
 
-/// The sweep cap of the cyclic Jacobi method in [`SymmetricEigen::new`].
-///
-/// Cyclic Jacobi converges quadratically once the off-diagonal part is small; for 6×6
-/// covariances 5–9 sweeps are typical (counting the final sweep that finds nothing to
-/// rotate), at most 10 in 400 000 random dense and low-rank matrices (f32 and f64).
-/// The cap only guards against a pathological non-terminating case; if it is reached the
-/// current approximation is returned with [`SymmetricEigen::converged`] `= false`.
-pub const MAX_SWEEPS: usize = 50;
-
-/// The eigen-decomposition `A = V·diag(λ)·Vᵀ` of a symmetric matrix.
-///
-/// Ordering and signs are deterministic (they depend only on the input bits):
-/// * `values` are sorted **descending**; exactly equal values keep the order in which
-///   the Jacobi iteration left them on the diagonal (a stable sort).
-/// * Each eigenvector (a **column** of `vectors`) has its largest-magnitude component
-///   positive (the first one among exactly equal magnitudes).
-///
-/// The basis of a repeated eigenvalue is whatever the iteration produced (orthonormal,
-/// but not unique), as with any eigen-solver; compare subspaces or `V·diag(λ)·Vᵀ`, not
-/// vectors.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SymmetricEigen<T, const N: usize> {
-    /// The eigenvalues, descending.
-    pub values: Vector<T, N>,
-    /// The orthonormal eigenvectors as columns: column `k` belongs to `values[k]`.
-    pub vectors: Matrix<T, N, N>,
-    /// Number of Jacobi sweeps performed (including the final sweep that found nothing
-    /// left to rotate).
-    pub sweeps: usize,
-    /// `true` if the convergence criterion was met within [`MAX_SWEEPS`].
-    pub converged: bool,
-}
-
-/// `(a + aᵀ)/2` computed as `a/2 + aᵀ/2`, so that it cannot overflow.
-#[inline]
-fn symmetric_part<T: Real, const N: usize>(a: &Matrix<T, N, N>) -> Matrix<T, N, N> {
-    let t = a.transpose();
-    a.zip_map(&t, |x, y| x * T::HALF + y * T::HALF)
-}
-
-/// Whether the off-diagonal element `apq` is negligible next to its diagonal elements:
-/// `|a_pq| ≤ ε·√|a_pp|·√|a_qq|` (Demmel & Veselić 1992), or it is below the smallest
-/// normal number (the matrix is pre-scaled to a maximum element ≈ 1).
-#[inline]
-fn negligible<T: Real>(apq: T, app: T, aqq: T) -> bool {
-    let a = apq.abs();
-    a < T::min_positive_value() || a <= T::EPS * app.abs().sqrt() * aqq.abs().sqrt()
-}
-
-impl<T: Real, const N: usize> SymmetricEigen<T, N> {
-    /// Eigen-decomposition of the symmetric part `(A + Aᵀ)/2` of `a` (only the symmetric
-    /// part is read, so any asymmetric rounding noise is averaged away).
-    ///
-    /// Method: the cyclic (row-by-row) Jacobi method with Rutishauser's stable rotation
-    /// formulas (Golub & Van Loan, *Matrix Computations*, 4th ed., Alg. 8.5.2 and
-    /// §8.5.3). A rotation (p, q) is skipped when `|a_pq| ≤ ε·√|a_pp·a_qq|`; the
-    /// iteration stops after the first sweep in which every pair is skipped, or after
-    /// [`MAX_SWEEPS`] sweeps. The criterion implies `off(A) ≤ √N·ε·‖A‖_F` and, for
-    /// positive definite matrices, gives the small eigenvalues to high relative accuracy
-    /// (Demmel & Veselić, *Jacobi's method is more accurate than QR*, SIAM J. Matrix
-    /// Anal. Appl. 13, 1992). Matrices with elements outside `[√min_positive, √max]` are
-    /// scaled by their largest element first (no overflow or underflow for any finite
-    /// input).
-    ///
-    /// Accuracy: eigenvalues to `O(N·ε·‖A‖)` absolute (observed ≤ 4·10⁻¹⁵·‖A‖ against
-    /// LAPACK `eigh` on the golden files), eigenvectors orthonormal to `O(N·ε)`, each
-    /// accurate to `O(ε·‖A‖/gap)`. `V·diag(λ)·Vᵀ` reproduces A to `O(N·ε·‖A‖)`.
-    ///
-    /// Errors: [`Error::NonFinite`] if `a` contains NaN or ±∞.
-    pub fn new(a: &Matrix<T, N, N>) -> Result<Self, Error> {
-        if !a.is_finite() {
-            return Err(Error::NonFinite);
-        }
-        let mut m = symmetric_part(a);
-        let mut v = Matrix::<T, N, N>::identity();
-        // Scale extreme matrices so that every intermediate stays finite and normal.
-        let mut unscale = T::ONE;
-        let mut amax = m.amax();
-        if amax == T::ZERO {
-            return Ok(Self {
-                values: Vector::zeros(),
-                vectors: v,
-                sweeps: 0,
-                converged: true,
-            });
-        }
-        if amax < T::min_positive_value() {
-            // Subnormal: 1/amax would overflow; lift by the exact power of two 1/ε first.
-            m = m.scale(T::ONE / T::EPS);
-            amax /= T::EPS;
-            unscale = T::EPS;
-        }
-        if amax < T::min_positive_value().sqrt() || amax > T::max_value().sqrt() {
-            m = m.scale(T::ONE / amax);
-            unscale *= amax;
-        }
-
-        let mut sweeps = 0;
-        let mut converged = false;
-        loop {
-            let mut rotated = false;
-            for p in 0..N {
-                for q in (p + 1)..N {
-                    let (app, aqq, apq) = (m.0[p][p], m.0[q][q], m.0[p][q]);
-                    if negligible(apq, app, aqq) {
-                        continue;
-                    }
-                    rotated = true;
-                    // t = tan of the rotation angle, the smaller root of
-                    // t² + 2τt − 1 = 0 (|angle| ≤ π/4); hypot avoids overflow of τ².
-                    let tau = (aqq - app) / (apq + apq);
-                    let root = T::ONE.hypot(tau);
-                    let t = if tau >= T::ZERO {
-                        T::ONE / (tau + root)
-                    } else {
-                        -T::ONE / (root - tau)
-                    };
-                    let c = T::ONE / (T::ONE + t * t).sqrt();
-                    let s = t * c;
-                    m.0[p][p] = app - t * apq;
-                    m.0[q][q] = aqq + t * apq;
-                    m.0[p][q] = T::ZERO;
-                    m.0[q][p] = T::ZERO;
-                    for r in 0..N {
-                        if r != p && r != q {
-                            let (arp, arq) = (m.0[r][p], m.0[r][q]);
-                            let np = c * arp - s * arq;
-                            let nq = s * arp + c * arq;
-                            m.0[r][p] = np;
-                            m.0[p][r] = np;
-                            m.0[r][q] = nq;
-                            m.0[q][r] = nq;
-                        }
-                    }
-                    for row in v.0.iter_mut() {
-                        let (vrp, vrq) = (row[p], row[q]);
-                        row[p] = c * vrp - s * vrq;
-                        row[q] = s * vrp + c * vrq;
-                    }
-                }
-            }
-            sweeps += 1;
-            if !rotated {
-                converged = true;
-                break;
-            }
-            if sweeps >= MAX_SWEEPS {
-                break;
-            }
-        }
-
-        let mut values = m.diagonal().scale(unscale);
-        // Stable insertion sort, descending; columns of V move with their values.
-        for k in 1..N {
-            let mut j = k;
-            while j > 0 && values.0[j - 1] < values.0[j] {
-                values.0.swap(j - 1, j);
-                for row in v.0.iter_mut() {
-                    row.swap(j - 1, j);
-                }
-                j -= 1;
-            }
-        }
-        // Sign convention: the largest-magnitude component of each column is positive.
-        for k in 0..N {
-            let mut best = T::ZERO;
-            let mut sign_negative = false;
-            for row in v.0.iter() {
-                let x = row[k];
-                if x.abs() > best {
-                    best = x.abs();
-                    sign_negative = x < T::ZERO;
-                }
-            }
-            if sign_negative {
-                for row in v.0.iter_mut() {
-                    row[k] = -row[k];
-                }
-            }
-        }
-        Ok(Self {
-            values,
-            vectors: v,
-            sweeps,
-            converged,
-        })
-    }
-
-    /// The largest eigenvalue.
-    #[inline]
-    pub fn max_value(&self) -> T {
-        self.values.0.first().copied().unwrap_or(T::ZERO)
-    }
-
-    /// The smallest eigenvalue.
-    #[inline]
-    pub fn min_value(&self) -> T {
-        self.values.0.last().copied().unwrap_or(T::ZERO)
-    }
-
-    /// The same decomposition with negative eigenvalues set to 0: the nearest positive
-    /// semi-definite matrix in the Frobenius norm (Higham 1988), used for covariances
-    /// whose rounding noise produced tiny negative eigenvalues.
-    #[inline]
-    pub fn clamped(&self) -> Self {
-        Self {
-            values: self.values.map(|x| x.max(T::ZERO)),
-            ..*self
-        }
-    }
-
-    /// `true` if the smallest eigenvalue is at least `−tol·max(λ_max, 0)`, i.e. the matrix
-    /// is positive semi-definite up to the relative tolerance `tol` (e.g. [`Real::TOL`]).
-    #[inline]
-    pub fn is_psd(&self, tol: T) -> bool {
-        self.min_value() >= -tol * self.max_value().max(T::ZERO)
-    }
-
-    /// The eigenvalue threshold below which [`pinv_sqrt`](Self::pinv_sqrt) treats an
-    /// eigenvalue as zero: `N·ε·max(λ_max, 0)` (the numerical-rank rule of LAPACK/numpy
-    /// `matrix_rank`).
-    #[inline]
-    pub fn rank_threshold(&self) -> T {
-        T::from_usize(N) * T::EPS * self.max_value().max(T::ZERO)
-    }
-
-    /// The number of eigenvalues above [`rank_threshold`](Self::rank_threshold).
-    #[inline]
-    pub fn rank(&self) -> usize {
-        let thr = self.rank_threshold();
-        self.values.0.iter().filter(|&&x| x > thr).count()
-    }
-
-    /// `V·diag(λ)·Vᵀ`, exactly symmetric.
-    #[inline]
-    pub fn reconstruct(&self) -> Matrix<T, N, N> {
-        Matrix::from_diagonal(&self.values).congruence(&self.vectors)
-    }
-
-    /// `V·diag(f(λ))·Vᵀ`, exactly symmetric.
-    #[inline]
-    pub fn map_values(&self, f: impl FnMut(T) -> T) -> Matrix<T, N, N> {
-        Matrix::from_diagonal(&self.values.map(f)).congruence(&self.vectors)
-    }
-
-    /// The symmetric positive semi-definite square root `V·diag(√λ⁺)·Vᵀ`, where
-    /// eigenvalues at or below [`rank_threshold`](Self::rank_threshold) (rounding noise,
-    /// and all negative ones) count as 0, consistently with
-    /// [`pinv_sqrt`](Self::pinv_sqrt): `sqrt()·pinv_sqrt()` is the orthogonal projector on
-    /// the numerical range. Dropping them changes the result by at most
-    /// `√(N·ε·λ_max)` (the root of what the decomposition cannot resolve anyway).
-    #[inline]
-    pub fn sqrt(&self) -> Matrix<T, N, N> {
-        let thr = self.rank_threshold();
-        self.map_values(|x| if x > thr { x.sqrt() } else { T::ZERO })
-    }
-
-    /// The symmetric pseudo-inverse square root `V·diag(λ⁺^(−½))·Vᵀ`, where eigenvalues at
-    /// or below [`rank_threshold`](Self::rank_threshold) (including all negative ones)
-    /// contribute 0 instead of their inverse root. Finite for every decomposition of a
-    /// finite matrix.
-    #[inline]
-    pub fn pinv_sqrt(&self) -> Matrix<T, N, N> {
-        let thr = self.rank_threshold();
-        self.map_values(|x| if x > thr { T::ONE / x.sqrt() } else { T::ZERO })
-    }
-}
-
 /// Checks the grid arguments and returns the number of points, `n_steps²`.
 ///
-/// Errors: [`Error::TooFewSamples`] for `n_steps < 2` (the grid needs both poles),
+/// # Errors
+///
+/// [`Error::GridSize`] for `n_steps < 2` (the grid needs both poles),
 /// [`Error::BufferTooSmall`] if `len < n_steps²` (or `n_steps²` overflows `usize`).
 #[inline]
 fn grid_len(n_steps: usize, len: usize) -> Result<usize, Error> {
     if n_steps < 2 {
-        return Err(Error::TooFewSamples);
+        return Err(Error::GridSize);
     }
     match n_steps.checked_mul(n_steps) {
         Some(n) if n <= len => Ok(n),
@@ -409,7 +138,7 @@ fn fill_grid<T: Real>(n_steps: usize, out: &mut [Vec3<T>], mut f: impl FnMut(&Ve
 /// axes and whose translation is the mean, and the radii (standard deviations) along
 /// those axes, **ascending**.
 ///
-/// Corresponds to pytransform3d's `to_ellipsoid(mean, cov)` (MATH.md §3.8), whose order
+/// Corresponds to pytransform3d's `to_ellipsoid(mean, cov)`, whose order
 /// and sign rule are kept so that results compare: radii ascending, rotation columns the
 /// eigenvectors of the same order, all three columns negated if their determinant is
 /// negative (so `det R = +1`). The surface at k standard deviations is
@@ -422,11 +151,17 @@ fn fill_grid<T: Real>(n_steps: usize, out: &mut [Vec3<T>], mut f: impl FnMut(&Ve
 /// eigenvectors are ours ([`SymmetricEigen`]), so R may differ from pytransform3d's in
 /// the sign of column pairs and, for repeated radii, in the basis of the repeated axes.
 ///
-/// Method: [`SymmetricEigen`] of the symmetric part of `cov`. Accuracy: `R·diag(radii²)·Rᵀ`
+/// Method: [`SymmetricEigen`] of the symmetric part of `cov`.
+///
+/// # Accuracy
+///
+/// `R·diag(radii²)·Rᵀ`
 /// reproduces `cov` to `O(ε·‖cov‖)` (observed on the golden files, relative to
 /// `max(1, max|cov|)`: 1.9·10⁻¹⁵ in f64, 7·10⁻⁷ in f32).
 ///
-/// Errors: [`Error::NonFinite`] if an input contains NaN or ±∞.
+/// # Errors
+///
+/// [`Error::NonFinite`] if an input contains NaN or ±∞.
 pub fn to_ellipsoid<T: Real>(
     mean: &Vec3<T>,
     cov: &Mat3<T>,
@@ -463,28 +198,33 @@ pub fn to_ellipsoid<T: Real>(
 /// `out` and returns their number.
 ///
 /// Corresponds to pytransform3d's `to_projected_ellipsoid(mean, cov, factor, n_steps)`
-/// (MATH.md §3.9), which returns the same points as three `n × n` arrays x, y, z:
+/// which returns the same points as three `n × n` arrays x, y, z:
 /// `out[i·n + j] = (x[i][j], y[i][j], z[i][j])`. Its conventions are kept, quirks
 /// included: the three largest eigenvalues are used whatever their units (rad² or m²),
 /// and the transpose `R(E)ᵀ·p(E)` makes the surface the right-perturbation projection of
-/// `D·Σ·D`, `D = diag(−1, −1, −1, 1, 1, 1)` (MATH.md §1.4). It is **not** an equiprobable
+/// `D·Σ·D`, `D = diag(−1, −1, −1, 1, 1, 1)` (neither the left nor the right
+/// perturbation's surface). It is **not** an equiprobable
 /// surface of the tool position: see the [module docs](self) and use [`lift_surface`].
 ///
 /// Differences: negative eigenvalues are clamped to 0 (the reference takes `sqrt` of
 /// rounding-noise negatives and returns an all-NaN grid for covariances of rank < 3;
 /// ours never does); `p(E)` is [`se3::exp_translation`] (the translation of [`se3::exp`]),
-/// accurate for tiny rotations (the reference's batch exp loses `ε·‖v‖/‖ω‖`, MATH.md
-/// §2.3); the eigenvectors are ours, so the grid points are those of the reference up to
+/// accurate for tiny rotations (the reference's batch exp divides by ‖ω‖ and loses
+/// `ε·‖v‖/‖ω‖`); the eigenvectors are ours, so the grid points are those of the reference up to
 /// the eigenvector signs (the surface is the same). [`to_projected_ellipsoid_from_eigen`]
 /// takes a given eigen basis.
 ///
-/// Accuracy, relative to `max(1, max|y|)`, given the reference's eigen basis: f64
+/// # Accuracy
+///
+/// Relative to `max(1, max|y|)`, given the reference's eigen basis: f64
 /// ≤ 10⁻¹² (observed 7.4·10⁻¹⁵ on the 200 golden cases; the reference's batch-exp
 /// error never showed there); f32 ≤ 8·ε₃₂·(1 + r), r = factor·√λ₀ the largest
 /// perturbation (its rounding enters sin/cos), observed 1.0·10⁻⁶. With our own eigen
 /// basis add the eigenvector error `ε·‖Σ‖/gap` times r.
 ///
-/// Errors: [`Error::NonFinite`] (any input), [`Error::TooFewSamples`] for
+/// # Errors
+///
+/// [`Error::NonFinite`] (any input), [`Error::GridSize`] for
 /// `n_steps < 2`, [`Error::BufferTooSmall`] if `out.len() < n_steps²`.
 pub fn to_projected_ellipsoid<T: Real>(
     mean: &Transform<T>,
@@ -503,7 +243,11 @@ pub fn to_projected_ellipsoid<T: Real>(
 /// (only the first three of each are used). This lets a caller reproduce the reference's
 /// grid points with the reference's own (LAPACK-specific) eigenvectors.
 ///
-/// Negative values are clamped to 0. Errors as [`to_projected_ellipsoid`].
+/// Negative values are clamped to 0.
+///
+/// # Errors
+///
+/// As [`to_projected_ellipsoid`].
 pub fn to_projected_ellipsoid_from_eigen<T: Real>(
     mean: &Transform<T>,
     values: &Vec6<T>,
@@ -573,9 +317,12 @@ fn check_pose_cov<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Result<(), Err
 /// (rotation first, so `Σ_vv` is the lower-right 3×3 block; only its symmetric part is
 /// read). First order because `p(T̄·Exp(η)) = t̄ + R̄·(v + ½ ω×v + …)`.
 ///
-/// Accuracy: exactly symmetric, `O(ε·‖Σ_vv‖)`. As an approximation of the true
-/// distribution: 2–4 % (Frobenius) at small noise, 14–18 % at the seed robot's noise
-/// (MATH.md §8); the second-order mean shift is [`position_mean_second_order`].
+/// # Accuracy
+///
+/// Exactly symmetric, `O(ε·‖Σ_vv‖)`. As an approximation of the true
+/// distribution: good at small noise, a first-order error that grows with the rotational
+/// noise (the sampled positions lie on arcs); the second-order mean shift is
+/// [`position_mean_second_order`].
 #[inline]
 pub fn position_covariance<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Mat3<T> {
     symmetric_part(&cov.block(1, 1)).congruence(&mean.rotation)
@@ -586,7 +333,9 @@ pub fn position_covariance<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Mat3<
 /// `T = T̄·Exp(η)`. Radii ascending, at one standard deviation (multiply by k from
 /// [`chi2_3_radius`] for a probability).
 ///
-/// Errors: [`Error::NonFinite`].
+/// # Errors
+///
+/// [`Error::NonFinite`].
 pub fn position_ellipsoid<T: Real>(
     mean: &Transform<T>,
     cov: &Mat6<T>,
@@ -603,8 +352,8 @@ pub fn position_ellipsoid<T: Real>(
 /// Method: `p(Exp(η)) = J(ω)·v = v + ½ ω×v + ⅙ ω×(ω×v) + …`; the first and third-order
 /// terms have zero mean for a zero-mean Gaussian, so this is exact up to fourth-order
 /// moments. On the seed robot the sampled mean sits 0.10 m from t̄ and this predicts it
-/// within about 5 mm, the size of the neglected fourth-order terms (MATH.md §8;
-/// `tests/monte_carlo.rs` measures 5.3 ± 1.3 mm). Non-finite input gives non-finite output.
+/// within about 5 mm, the size of the neglected fourth-order terms
+/// (`tests/monte_carlo.rs` measures 5.3 ± 1.3 mm). Non-finite input gives non-finite output.
 #[inline]
 pub fn position_mean_second_order<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Vec3<T> {
     let c = symmetric_part(cov).block(0, 1); // c[j][k] = Σ_{ω_j v_k}
@@ -625,8 +374,8 @@ pub fn position_mean_second_order<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -
 /// conditional mean `E[η | v] = Σ[:, v]·Σ_vv⁻¹·v`), so `{ξ(s) : ‖s‖ = k}` is the
 /// first-order k-σ marginal ellipsoid lifted to 6D and mapped through the exact
 /// exponential: it bends like the sampled cloud. See the [module docs](self) for why this
-/// is the default (MATH.md §8: 0.20 / 0.75 / 0.98 of sampled tool positions inside at
-/// k = 1 / 2 / 3 on the seed robot, Gaussian 0.20 / 0.74 / 0.97).
+/// is the default (`tests/coverage.rs`: the sampled tool positions inside it are within
+/// 0.03 of the Gaussian fractions 0.20 / 0.74 / 0.97 at k = 1 / 2 / 3).
 ///
 /// `Σ_vv^(−½)` is the symmetric pseudo-inverse square root ([`SymmetricEigen::pinv_sqrt`]):
 /// a rank-deficient position covariance gives a flat (or degenerate) surface, never NaN.
@@ -643,10 +392,16 @@ impl<T: Real> LiftSurface<T> {
     /// Builds the lift map of `(mean, cov)`; only the symmetric part of `cov` is read.
     ///
     /// Method: `Σ_vv^(−½)` from the Jacobi decomposition of `Σ_vv` ([`SymmetricEigen`]),
-    /// eigenvalues at or below `3·ε·λ_max` treated as zero. Accuracy: `O(ε·κ^½)` relative
+    /// eigenvalues at or below `3·ε·λ_max` treated as zero.
+    ///
+    /// # Accuracy
+    ///
+    /// `O(ε·κ^½)` relative
     /// in B, κ the condition number of `Σ_vv` over its numerical range.
     ///
-    /// Errors: [`Error::NonFinite`].
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`].
     pub fn new(mean: &Transform<T>, cov: &Mat6<T>) -> Result<Self, Error> {
         check_pose_cov(mean, cov)?;
         let sym = symmetric_part(cov);
@@ -677,7 +432,9 @@ impl<T: Real> LiftSurface<T> {
     /// points, see the [module docs](self)): `out[i·n + j] = point(k·u(i, j))`. Returns
     /// the number of points written.
     ///
-    /// Errors: [`Error::NonFinite`] for non-finite k, [`Error::TooFewSamples`] for
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] for non-finite k, [`Error::GridSize`] for
     /// `n_steps < 2`, [`Error::BufferTooSmall`] if `out.len() < n_steps²`.
     pub fn grid(&self, k: T, n_steps: usize, out: &mut [Vec3<T>]) -> Result<usize, Error> {
         if !k.is_finite() {
@@ -699,7 +456,7 @@ impl<T: Real> LiftSurface<T> {
 /// [`LiftSurface::grid`]; never NaN for finite input, whatever the rank of Σ.
 ///
 /// ```
-/// use ppoe::ellipsoid::{chi2_3_radius, lift_surface};
+/// use ppoe::surface::{chi2_3_radius, lift_surface};
 /// use ppoe::{Mat6, Transform, Vec3};
 /// let cov = Mat6::<f64>::identity() * 1e-4;
 /// let k = chi2_3_radius(0.95).unwrap(); // 2.7955
@@ -726,9 +483,13 @@ pub fn lift_surface<T: Real>(
 /// number.
 ///
 /// This is the ellipsoid of [`position_ellipsoid`] (`{y : (y − t̄)ᵀ(R̄Σ_vvR̄ᵀ)⁻¹(y − t̄) =
-/// k²}`). It is right at small noise but does not bend with the sampled cloud (MATH.md
-/// §8: 0.19 / 0.64 / 0.86 coverage at k = 1 / 2 / 3 on the seed robot). Method:
-/// [`SymmetricEigen::sqrt`]. Errors as [`lift_surface`].
+/// k²}`). It is right at small noise but does not bend with the sampled cloud, so it
+/// under-covers at larger rotational noise. Method:
+/// [`SymmetricEigen::sqrt`].
+///
+/// # Errors
+///
+/// As [`lift_surface`].
 pub fn marginal_surface<T: Real>(
     mean: &Transform<T>,
     cov: &Mat6<T>,
@@ -766,7 +527,11 @@ pub enum Surface {
 ///
 /// `cov` is the right (local) perturbation covariance for [`Surface::Lift`] and
 /// [`Surface::Marginal`]; [`Surface::Pytransform3d`] uses it as given, as the reference
-/// does. Errors as the chosen function.
+/// does.
+///
+/// # Errors
+///
+/// As the chosen function.
 pub fn surface_grid<T: Real>(
     surface: Surface,
     mean: &Transform<T>,
@@ -820,12 +585,16 @@ fn chi3_cdf(k: f64) -> f64 {
 /// The probability that a 3D Gaussian vector lies within Mahalanobis distance `k` of its
 /// mean: `P(‖x‖ ≤ k)`, x ~ N(0, I₃), i.e. the χ²₃ CDF at k² — the coverage of an
 /// equiprobable 3D ellipsoid drawn at k standard deviations (0.1987, 0.7385, 0.9707 for
-/// k = 1, 2, 3).
+/// k = 1, 2, 3). `k ≤ 0` gives 0, `k = +∞` gives 1, NaN gives NaN.
 ///
 /// Method: the regularized incomplete gamma function `P(3/2, k²/2)`, by its power series
 /// below k = 2 and as `erf(k/√2) − √(2/π)·k·e^(−k²/2)` above (libm's erf), evaluated in
-/// f64 and rounded to T. Accuracy: a few f64 ulps (relative, also for small k), then the
-/// rounding to T. `k ≤ 0` gives 0, `k = +∞` gives 1, NaN gives NaN.
+/// f64 and rounded to T.
+///
+/// # Accuracy
+///
+/// A few f64 ulps (relative, also for small k), then the
+/// rounding to T.
 #[inline]
 pub fn chi2_3_probability<T: Real>(k: T) -> T {
     T::lit(chi3_cdf(k.to_f64()))
@@ -836,12 +605,16 @@ pub fn chi2_3_probability<T: Real>(k: T) -> T {
 /// [`chi2_3_probability`]. `p = 0.95` gives k = 2.7955 (not 1.96, which holds 72 % in
 /// 3D); 0.1987 / 0.7385 / 0.9707 give 1 / 2 / 3.
 ///
+/// Returns `None` for p outside `[0, 1)` or NaN (p = 1 needs k = ∞); `Some(0)` for p = 0.
+///
 /// Method: bisection on [`chi2_3_probability`] (evaluated in f64) over a bracket found by
 /// doubling from 1, until the bracket is two adjacent f64 numbers; returns the upper end
-/// rounded to T. Accuracy: `|k − k*| ≲ ε_f64·(1 + 1/(k·pdf))` before the rounding to T,
-/// i.e. a few f64 ulps for p in [10⁻¹², 1 − 10⁻¹²].
+/// rounded to T.
 ///
-/// Returns `None` for p outside `[0, 1)` or NaN (p = 1 needs k = ∞); `Some(0)` for p = 0.
+/// # Accuracy
+///
+/// `|k − k*| ≲ ε_f64·(1 + 1/(k·pdf))` before the rounding to T,
+/// i.e. a few f64 ulps for p in [10⁻¹², 1 − 10⁻¹²].
 pub fn chi2_3_radius<T: Real>(p: T) -> Option<T> {
     let p = p.to_f64();
     if !(0.0..1.0).contains(&p) {
@@ -871,26 +644,11 @@ pub fn chi2_3_radius<T: Real>(p: T) -> Option<T> {
     Some(T::lit(hi))
 }
 
-crate::linalg::approx_fields!([T: Real, const N: usize] SymmetricEigen<T, N> { values, vectors });
 crate::linalg::approx_fields!([T: Real] LiftSurface<T> { mean, basis });
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn jacobi_small_example() {
-        let a: Mat3<f64> = Matrix([[4.0, 1.0, 0.5], [1.0, 3.0, 0.2], [0.5, 0.2, 2.0]]);
-        let e = SymmetricEigen::new(&a).unwrap();
-        assert!(e.converged);
-        assert!(e.values.0[0] >= e.values.0[1] && e.values.0[1] >= e.values.0[2]);
-        approx::assert_relative_eq!(e.reconstruct(), a, epsilon = 1e-14);
-        approx::assert_relative_eq!(
-            e.vectors.transpose() * e.vectors,
-            Mat3::identity(),
-            epsilon = 1e-14
-        );
-    }
 
     #[test]
     fn chi2_known_values() {
