@@ -675,19 +675,36 @@ pub fn left_jacobian_inv<T: Real>(xi: &Vec6<T>) -> Mat6<T> {
 ///
 /// `S = (ŝ, q × ŝ + h·ŝ)` for finite h (h = 0: revolute), `S = (0, ŝ)` for h = ±∞
 /// (prismatic; q is ignored). Corresponds to pytransform3d's
-/// `screw_axis_from_screw_parameters`. Errors: [`Error::ZeroAxis`] if ‖s‖ = 0,
-/// [`Error::NonFinite`] for NaN anywhere or non-finite q, s.
+/// `screw_axis_from_screw_parameters`.
+///
+/// Method: s is divided by its largest component before it is normalised, so any
+/// nonzero finite direction works, however tiny (subnormal) or huge (‖s‖² beyond the
+/// largest finite number). Accuracy: ŝ is a unit vector to a few ε.
+///
+/// # Errors
+///
+/// [`Error::ZeroAxis`] if s = 0, [`Error::NonFinite`] for NaN anywhere or non-finite q,
+/// s, [`Error::Overflow`] if `q × ŝ + h·ŝ` overflows (‖q‖ or |h| near the largest finite
+/// number).
 pub fn screw_axis<T: Real>(q: &Vec3<T>, s: &Vec3<T>, h: T) -> Result<Vec6<T>, Error> {
     if !s.is_finite() || h.is_nan() || (h.is_finite() && !q.is_finite()) {
         return Err(Error::NonFinite);
     }
-    let n = s.norm();
-    if n == T::ZERO {
+    let m = s.amax();
+    if m == T::ZERO {
         return Err(Error::ZeroAxis);
     }
-    let s = s.scale(T::ONE / n);
+    // Divided (not multiplied by 1/m, which overflows for subnormal m): components in
+    // [−1, 1] with one of magnitude 1, so the norm is in [1, √3].
+    let s = s.map(|x| x / m);
+    let s = s.scale(T::ONE / s.norm());
     if h.is_infinite() {
         return Ok(Vec6::from_parts(Vec3::zeros(), s));
     }
-    Ok(Vec6::from_parts(s, q.cross(&s) + s.scale(h)))
+    let screw = Vec6::from_parts(s, q.cross(&s) + s.scale(h));
+    if screw.is_finite() {
+        Ok(screw)
+    } else {
+        Err(Error::Overflow)
+    }
 }
