@@ -559,7 +559,9 @@ impl<'a, T: Real> ChainRef<'a, T> {
     /// Checks the chain itself: finite screw axes with a unit rotation part (revolute) or
     /// zero rotation and unit translation part (prismatic) within [`Real::TOL`], limits not
     /// NaN, displacement constants (where given) those of the screw within [`Real::TOL`],
-    /// and a valid home pose ([`Transform::check`]).
+    /// and a valid home pose ([`Transform::check`]). A non-unit axis is
+    /// [`Error::ZeroAxis`] if its relevant part is exactly zero, else
+    /// [`Error::NotUnitAxis`].
     pub fn check(&self) -> Result<(), Error> {
         self.home.check()?;
         for j in self.joints {
@@ -572,7 +574,8 @@ impl<'a, T: Real> ChainRef<'a, T> {
                 _ => (w - T::ONE).abs() <= T::TOL,
             };
             if !unit {
-                return Err(Error::ZeroAxis);
+                let length = if j.kind == JointKind::Prismatic { v } else { w };
+                return Err(crate::checks::axis_length_error(length));
             }
             if let Some(k) = &j.constants {
                 if !k.matches(&j.screw, T::TOL) {
@@ -585,7 +588,9 @@ impl<'a, T: Real> ChainRef<'a, T> {
 
     /// The PPOE with input checks: the chain ([`ChainRef::check`]), every θ finite, every
     /// covariance finite, symmetric and positive semi-definite within tolerance
-    /// ([`check_covariance`]); then [`ChainRef::ppoe`].
+    /// ([`check_covariance`]); then [`ChainRef::ppoe`], whose result is validated too:
+    /// [`Error::Overflow`] if it is not finite (e.g. huge link lengths times large
+    /// covariances overflow inside).
     ///
     /// The output is exactly symmetric. It is positive semi-definite within rounding when
     /// the input covariances are PSD. An input that is *indefinite within the tolerance*
@@ -609,7 +614,9 @@ impl<'a, T: Real> ChainRef<'a, T> {
         for c in covs {
             check_covariance(c)?;
         }
-        self.ppoe(thetas, covs, convention)
+        let out = self.ppoe(thetas, covs, convention)?;
+        crate::checks::validate_uncertain_pose(&out.pose, &out.cov)?;
+        Ok(out)
     }
 
     /// Higher-order PPOE: the Barfoot & Furgale fourth-order compounding
