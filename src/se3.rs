@@ -634,7 +634,7 @@ fn q_coefficients<T: Real>(ph: T) -> (T, T, T) {
 /// The Q block of the SE(3) left Jacobian, `J₆ = [[J, 0], [Q, J]]`, for ξ = (φ, ρ)
 /// (Barfoot, *State Estimation for Robotics*, eq. 7.86b).
 ///
-/// Matches pytransform3d's internal Q (MATH.md §2.6), including its polynomial branch
+/// Matches pytransform3d's internal Q, including its polynomial branch
 /// below ‖φ‖ = 0.5.
 pub fn q_matrix<T: Real>(xi: &Vec6<T>) -> Mat3<T> {
     let phi = xi.rotation();

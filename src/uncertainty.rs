@@ -60,7 +60,7 @@ pub fn left_to_right<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Mat6<T> {
 /// cov_A2B, mean_B2C, cov_B2C)` (same argument order). With [`Order::Fourth`] it adds the
 /// fourth-order terms of Barfoot & Furgale, *Associating Uncertainty With
 /// Three-Dimensional Poses for Use in Estimation Problems*, IEEE T-RO 2014, eq. 55–57,
-/// exactly as pytransform3d does (MATH.md §3.1). Cost: two 6×6 congruences (second order),
+/// exactly as pytransform3d does. Cost: two 6×6 congruences (second order),
 /// about 30 3×3 products more (fourth), plus a 6×6 Cholesky and, where it fails, a
 /// Jacobi eigen-decomposition ([`Order::FourthPsd`]).
 ///
@@ -129,8 +129,8 @@ fn swap_order<T: Real>(m: &Mat6<T>) -> Mat6<T> {
 }
 
 /// The fourth-order compounding terms F(Σ₁, Σ₂) of Barfoot & Furgale (2014), where Σ₁ is
-/// the second transform's covariance and Σ₂ the first one moved into the output frame
-/// (MATH.md §3.1). Computed in translation-first order, as in the paper.
+/// the second transform's covariance and Σ₂ the first one moved into the output frame.
+/// Computed in translation-first order, as in the paper.
 pub(crate) fn fourth_order_terms<T: Real>(s1: &Mat6<T>, s2: &Mat6<T>) -> Mat6<T> {
     let a = swap_order(s1);
     let b = swap_order(s2);
@@ -515,7 +515,7 @@ pub struct Estimate<G, C> {
 ///
 /// Corresponds to pytransform3d's `frechet_mean` as used by its two estimators, with one
 /// deliberate difference: pytransform3d takes right differences but applies a *left*
-/// update, which converges only for mean rotations below 60° (MATH.md §3.5). The
+/// update, which converges only for mean rotations below 60°. The
 /// consistent right update here has the same fixed point (so the results agree
 /// wherever pytransform3d converges) and converges at any angle. The tolerances are
 /// relative to the scale of the samples (see [`IterationOptions`]).
@@ -534,6 +534,10 @@ pub fn frechet_mean<T: Real, G: LieGroup<T, D>, const D: usize>(
     let first = samples.first().ok_or(Error::Empty)?;
     if samples.len() < 2 {
         return Err(Error::TooFewSamples);
+    }
+    // Non-finite input first, wherever it is, then group membership.
+    if !samples.iter().all(|s| s.is_finite()) {
+        return Err(Error::NonFinite);
     }
     for s in samples {
         s.check()?;
