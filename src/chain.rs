@@ -620,10 +620,13 @@ impl<'a, T: Real> ChainRef<'a, T> {
     }
 
     /// Higher-order PPOE: the Barfoot & Furgale fourth-order compounding
-    /// ([`concat_globally`] with [`Order::Fourth`]) applied once per joint in the global
+    /// ([`concat_globally`] with [`Order::FourthPsd`], so the result is PSD for PSD
+    /// inputs; with the raw [`Order::Fourth`] the seed robot with random PSD joint
+    /// covariances reached λmin = −0.08·λmax) applied once per joint in the global
     /// form, factor i = `(Dᵢ, Ad(Dᵢ)·covsᵢ·Ad(Dᵢ)ᵀ)`, then converted to `convention`
     /// (Right or Left; Pytransform3d is treated as Right). Closer to Monte Carlo at large
-    /// noise (MATH.md §8); about 4× the cost of [`ChainRef::ppoe`]. Unchecked.
+    /// noise (MATH.md §8); several times the cost of [`ChainRef::ppoe`] (`BENCHMARKS.md`).
+    /// Unchecked.
     pub fn ppoe_fourth_order(
         &self,
         thetas: &[T],
@@ -638,7 +641,7 @@ impl<'a, T: Real> ChainRef<'a, T> {
         for ((j, theta), cov) in self.joints.iter().zip(thetas).zip(covs) {
             let d = j.displacement(j.clip(*theta, false));
             let global = d.transport_covariance(cov);
-            (p, c) = concat_globally(&d, &global, &p, &c, Order::Fourth);
+            (p, c) = concat_globally(&d, &global, &p, &c, Order::FourthPsd);
         }
         let pose = p * self.home;
         let cov = match convention {
