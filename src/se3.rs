@@ -456,10 +456,8 @@ pub fn curly_hat<T: Real>(xi: &Vec6<T>) -> Mat6<T> {
 /// Corresponds to pytransform3d's `transform_from_exponential_coordinates` (the
 /// single-instance version). Method: one sin/cos and the coefficients of
 /// `I + aW + bW²` (rotation) and `I + bW + cW²` (left Jacobian, applied to v), with
-/// Taylor series below [`Real::SERIES`]. Accuracy: a few ε absolute in R and a few
-/// ε·‖v‖ in p, for any ω including tiny ones and those just above the series cut-off
-/// (within 8 ε·‖v‖ of a series oracle for t ∈ [SERIES, 64·SERIES],
-/// `tests/robustness_numerics.rs`; pytransform3d's batch formula loses ε·‖v‖/‖ω‖ there).
+/// Taylor series below [`Real::SERIES`]. Accuracy: a few ε in R and ε·‖v‖ in p for any
+/// ω (8 ε·‖v‖ just above the series cut-off, `tests/robustness_numerics.rs`).
 #[inline]
 pub fn exp<T: Real>(xi: &Vec6<T>) -> Transform<T> {
     let w = xi.rotation();
@@ -675,17 +673,14 @@ pub fn left_jacobian_inv<T: Real>(xi: &Vec6<T>) -> Mat6<T> {
 ///
 /// `S = (ŝ, q × ŝ + h·ŝ)` for finite h (h = 0: revolute), `S = (0, ŝ)` for h = ±∞
 /// (prismatic; q is ignored). Corresponds to pytransform3d's
-/// `screw_axis_from_screw_parameters`.
-///
-/// Method: s is divided by its largest component before it is normalised, so any
-/// nonzero finite direction works, however tiny (subnormal) or huge (‖s‖² beyond the
-/// largest finite number). Accuracy: ŝ is a unit vector to a few ε.
+/// `screw_axis_from_screw_parameters`. s is divided by its largest component before it
+/// is normalised, so any nonzero finite s works, subnormal or huge; ŝ is a unit vector
+/// to a few ε.
 ///
 /// # Errors
 ///
 /// [`Error::ZeroAxis`] if s = 0, [`Error::NonFinite`] for NaN anywhere or non-finite q,
-/// s, [`Error::Overflow`] if `q × ŝ + h·ŝ` overflows (‖q‖ or |h| near the largest finite
-/// number).
+/// s, [`Error::Overflow`] if `q × ŝ + h·ŝ` overflows.
 pub fn screw_axis<T: Real>(q: &Vec3<T>, s: &Vec3<T>, h: T) -> Result<Vec6<T>, Error> {
     if !s.is_finite() || h.is_nan() || (h.is_finite() && !q.is_finite()) {
         return Err(Error::NonFinite);
@@ -694,17 +689,12 @@ pub fn screw_axis<T: Real>(q: &Vec3<T>, s: &Vec3<T>, h: T) -> Result<Vec6<T>, Er
     if m == T::ZERO {
         return Err(Error::ZeroAxis);
     }
-    // Divided (not multiplied by 1/m, which overflows for subnormal m): components in
-    // [−1, 1] with one of magnitude 1, so the norm is in [1, √3].
+    // Divided (1/m overflows for subnormal m): one component ±1, so ‖s‖ ∈ [1, √3].
     let s = s.map(|x| x / m);
     let s = s.scale(T::ONE / s.norm());
     if h.is_infinite() {
         return Ok(Vec6::from_parts(Vec3::zeros(), s));
     }
     let screw = Vec6::from_parts(s, q.cross(&s) + s.scale(h));
-    if screw.is_finite() {
-        Ok(screw)
-    } else {
-        Err(Error::Overflow)
-    }
+    screw.is_finite().then_some(screw).ok_or(Error::Overflow)
 }

@@ -94,6 +94,13 @@ pub fn concat_globally<T: Real>(
 /// `m` itself (same bits) when it is positive definite (its Cholesky factorisation
 /// exists) or not finite; otherwise `V·diag(max(λ, 0))·Vᵀ`, exactly symmetric, accurate
 /// to O(N·ε·‖m‖) ([`SymmetricEigen`]).
+///
+/// ```
+/// use ppoe::{uncertainty::nearest_psd, Matrix};
+/// // Eigenvalues 3 and −1 (eigenvectors (1, 1)/√2 and (1, −1)/√2): −1 becomes 0.
+/// let p = nearest_psd(&Matrix([[1.0_f64, 2.0], [2.0, 1.0]]));
+/// assert!((p.0[0][0] - 1.5).abs() < 1e-15 && (p.0[0][1] - 1.5).abs() < 1e-15);
+/// ```
 pub fn nearest_psd<T: Real, const N: usize>(m: &Matrix<T, N, N>) -> Matrix<T, N, N> {
     if m.cholesky().is_some() {
         return *m;
