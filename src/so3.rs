@@ -122,20 +122,19 @@ pub fn exp<T: Real>(w: &Vec3<T>) -> Mat3<T> {
 
 /// Logarithm as unit axis and angle: `R = Exp(angle · axis)` with angle ∈ [0, π].
 ///
-/// Method (pytransform3d 3.17 `axis_angle_from_matrix`, except near π): angle =
-/// atan2(½‖r‖, (tr R − 1)/2) with r the skew part `(R₂₁−R₁₂, R₀₂−R₂₀, R₁₀−R₀₁)`; axis =
-/// r/‖r‖, except within [`Real::NEAR_PI`] of π, where r carries no information and the
-/// axis is read from the symmetric part S = (R + Rᵀ)/2: the row k of `S − cos θ·I`
-/// (= (1 − cos θ)·u_k·uᵀ) with the largest diagonal element, normalised, overall sign
-/// fixed by r (at exactly π the largest component is positive, as in the reference).
-/// Angle 0 returns axis (1, 0, 0).
+/// Method: angle = atan2(½‖r‖, (tr R − 1)/2) with r the skew part `(R₂₁−R₁₂, R₀₂−R₂₀,
+/// R₁₀−R₀₁)`, as pytransform3d 3.17's `axis_angle_from_matrix`. Axis: r/‖r‖ up to
+/// θ = π/2; beyond, where r shrinks towards π and loses its direction to rounding, the
+/// row k of `S − cos θ·I` (= (1 − cos θ)·u_k·uᵀ, S = (R + Rᵀ)/2) with the largest
+/// diagonal element, normalised, overall sign fixed by r (at exactly π the largest
+/// component is positive, as in the reference). Angle 0 returns axis (1, 0, 0).
 ///
-/// Accuracy (axis, angle θ = π − δ): the skew-part axis has an error ≈ ε/δ (a few ε
-/// far from π, ≈ 2·10⁻¹⁰ for f64 just outside the 10⁻⁶ switch, ≈ 2·10⁻⁵ for f32 outside
-/// its 5·10⁻³); the symmetric-part axis within [`Real::NEAR_PI`] of π is accurate to a
-/// few ε (better than pytransform3d, whose formula there is off by up to δ/2 in an axis
-/// component near 0). Tested against the exact axis in `tests/robustness_numerics.rs`.
-/// Never NaN for finite input; the input need not be exactly orthonormal.
+/// Accuracy (axis, for elements of R accurate to a few ε): ≈ ε/sin θ up to π/2 (the
+/// axis's own conditioning for small angles, ≤ √2·ε from π/4 on), a few ε beyond; within
+/// 16 ε of the exact axis for θ ∈ [π/2, π] and within 4 ε/sin θ below
+/// (`tests/robustness_numerics.rs`). pytransform3d, which switches only 10⁻⁶ from π, has
+/// an axis error ≈ ε/δ at π − δ outside that band (2·10⁻¹⁰ at its edge) and up to δ/2
+/// inside it. Never NaN for finite input; the input need not be exactly orthonormal.
 pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
     let m = rot.0;
     let r = Vector([m[2][1] - m[1][2], m[0][2] - m[2][0], m[1][0] - m[0][1]]);
@@ -146,7 +145,9 @@ pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
     if angle == T::ZERO || !angle.is_finite() {
         return (x_axis, angle);
     }
-    if T::PI() - angle >= T::NEAR_PI {
+    // Up to π/2 the skew part 2·sin θ·u carries the axis to ε/sin θ ≤ √2·ε; beyond, the
+    // symmetric part does better (below).
+    if cos >= T::ZERO {
         let inv = T::ONE / rn;
         if inv.is_finite() {
             return (r.scale(inv), angle);
@@ -156,11 +157,11 @@ pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
         let rs = r.map(|x| x / m);
         return (rs.scale(T::ONE / rs.norm()), angle);
     }
-    // Near π the skew part is ≈ 2δ·u and its direction is lost to rounding; the
-    // symmetric part is S = cos θ·I + (1 − cos θ)·u·uᵀ with 1 − cos θ ≈ 2, so the row
+    // Towards π the skew part ≈ 2δ·u (θ = π − δ) loses its direction to rounding (ε/δ);
+    // the symmetric part is S = cos θ·I + (1 − cos θ)·u·uᵀ with 1 − cos θ ≥ 1, so the row
     // of B = S − cos θ·I with the largest diagonal element (|u_k| ≥ 1/√3) is
-    // (1 − cos θ)·u_k·u: normalised, u to a few ε. (pytransform3d takes |uᵢ| =
-    // √((Sᵢᵢ + 1)/2) instead, which is off by up to δ/2 in a component near 0.)
+    // (1 − cos θ)·u_k·u: normalised, u to a few ε. (pytransform3d uses the skew part up
+    // to 10⁻⁶ from π, then |uᵢ| = √((Sᵢᵢ + 1)/2), off by up to δ/2 in a component near 0.)
     let sym = rot.symmetrize();
     let b = sym - Mat3::identity() * cos;
     let d = b.diagonal();
