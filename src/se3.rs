@@ -585,7 +585,7 @@ fn exp_translation_general<T: Real>(w: &Vec3<T>, v: &Vec3<T>) -> Vec3<T> {
 ///
 /// Corresponds to pytransform3d's `exponential_coordinates_from_transform`. Method: ω
 /// from [`so3::log`], `v = J⁻¹(ω)·p`. Accuracy: a few ε (relative to ‖p‖ for v) away from
-/// π; near π the axis is accurate to ε/(π − θ) at worst (see [`so3::log_axis_angle`]).
+/// π; ω to a few ε at any angle up to π (see [`so3::log_axis_angle`]).
 #[inline]
 pub fn log<T: Real>(t: &Transform<T>) -> Vec6<T> {
     let w = so3::log(&t.rotation);
