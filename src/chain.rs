@@ -136,7 +136,8 @@ impl<'a, T: Real> ChainView<'a, T> {
     /// # Errors
     ///
     /// [`Error::NonFinite`] for a non-finite screw or NaN limit, [`Error::ZeroAxis`] for a
-    /// screw axis that is not unit length, [`Error::InconsistentConstants`] for
+    /// screw axis whose relevant part (rotation; translation for a prismatic joint) is
+    /// exactly zero, [`Error::NotUnitAxis`] for one of another non-unit length, [`Error::InconsistentConstants`] for
     /// displacement constants that are not those of the screw, and the errors of
     /// [`Transform::check`] for the home pose.
     pub fn check(&self) -> Result<(), Error> {
@@ -151,7 +152,8 @@ impl<'a, T: Real> ChainView<'a, T> {
                 _ => (w - T::ONE).abs() <= T::TOL,
             };
             if !unit {
-                return Err(Error::ZeroAxis);
+                let length = if j.kind == JointKind::Prismatic { v } else { w };
+                return Err(crate::checks::axis_length_error(length));
             }
             if let Some(k) = &j.constants() {
                 if !k.matches(&j.screw, T::TOL) {

@@ -34,6 +34,13 @@ pub enum Error {
     /// A joint's displacement constants ([`crate::chain::JointConstants`]) are not those
     /// of its screw axis (changed after they were computed, or written by hand).
     InconsistentConstants,
+    /// Valid inputs gave a result that is not finite: an intermediate overflowed (e.g.
+    /// huge lengths times large covariances), so no trustworthy result exists in this
+    /// precision.
+    Overflow,
+    /// A screw axis that must be a unit vector (a joint's rotation part, or a prismatic
+    /// joint's translation part) is not one within tolerance; its length may be nonzero.
+    NotUnitAxis,
 }
 
 impl fmt::Display for Error {
@@ -51,6 +58,8 @@ impl fmt::Display for Error {
             Error::LengthMismatch => "inputs have mismatched lengths",
             Error::GridSize => "surface grid needs at least 2 steps",
             Error::InconsistentConstants => "joint constants do not match its screw axis",
+            Error::Overflow => "result is not finite: an intermediate overflowed",
+            Error::NotUnitAxis => "screw axis is not a unit vector",
         })
     }
 }

@@ -5,7 +5,12 @@
 //! SE(3) (Meyer, Strobl & Triebel, IROS 2022), plus the uncertainty algebra of
 //! pytransform3d's `uncertainty` module it is built on.
 //!
-//! * `#![no_std]`, no allocator, fixed-size types, no panics on any input.
+//! * `#![no_std]`, no allocator, fixed-size types, no `unsafe`. No function is meant to
+//!   panic, but only the PPOE path (`ChainRef::ppoe`) is *proven* panic-free, by a
+//!   link-time check on Cortex-M4F (`scripts/firmware.sh`); the other functions are
+//!   fuzzed (`FUZZING.md`), which finds panics but proves their absence for none.
+//!   Checked functions return an [`Error`] for bad input and for results that are not
+//!   finite.
 //! * Generic over `f32` and `f64` through one trait, [`Real`].
 //! * Exponential coordinates and covariances are **rotation first**: ξ = (ω, v).
 //!
@@ -56,6 +61,7 @@
 #![deny(missing_docs)]
 
 pub mod chain;
+mod checks;
 pub mod error;
 pub mod joint;
 pub mod linalg;

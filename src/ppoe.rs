@@ -116,7 +116,9 @@ impl<'a, T: Real> ChainView<'a, T> {
 
     /// The PPOE with input checks: the chain ([`ChainView::check`]), every θ finite, every
     /// covariance finite, symmetric and positive semi-definite within tolerance
-    /// ([`check_covariance`]); then [`ChainView::ppoe`].
+    /// ([`check_covariance`]); then [`ChainView::ppoe`], whose result is validated too:
+    /// [`Error::Overflow`] if it is not finite (e.g. huge link lengths times large
+    /// covariances overflow inside).
     ///
     /// The output is exactly symmetric. It is positive semi-definite within rounding when
     /// the input covariances are PSD. An input that is *indefinite within the tolerance*
@@ -132,7 +134,8 @@ impl<'a, T: Real> ChainView<'a, T> {
     /// # Errors
     ///
     /// Those of [`ChainView::check`] for the chain, [`Error::NonFinite`] for a non-finite
-    /// θ, those of [`check_covariance`] for a covariance, then those of [`ChainView::ppoe`].
+    /// θ, those of [`check_covariance`] for a covariance, then those of [`ChainView::ppoe`],
+    /// and [`Error::Overflow`] for a non-finite result.
     pub fn ppoe_checked(
         &self,
         thetas: &[T],
@@ -146,14 +149,18 @@ impl<'a, T: Real> ChainView<'a, T> {
         for c in covs {
             check_covariance(c)?;
         }
-        self.ppoe(thetas, covs, convention)
+        let out = self.ppoe(thetas, covs, convention)?;
+        crate::checks::validate_uncertain_pose(&out.pose, &out.cov)?;
+        Ok(out)
     }
 
     /// Higher-order PPOE: the Barfoot & Furgale fourth-order compounding
-    /// ([`concat_globally`] with [`Order::Fourth`]) applied once per joint in the global
+    /// ([`concat_globally`] with [`Order::FourthPsd`], so the result is PSD for PSD
+    /// inputs; with the raw [`Order::Fourth`] the seed robot with random PSD joint
+    /// covariances reached λmin = −0.08·λmax) applied once per joint in the global
     /// form, factor i = `(Dᵢ, Ad(Dᵢ)·covsᵢ·Ad(Dᵢ)ᵀ)`, then converted to `convention`
     /// (Right or Left; Pytransform3d is treated as Right). Closer to Monte Carlo at large
-    /// noise (ACCURACY.md, section 1); about 4× the cost of [`ChainView::ppoe`].
+    /// noise (ACCURACY.md, section 1); several times the cost of [`ChainView::ppoe`] (`BENCHMARKS.md`).
     /// Unchecked.
     ///
     /// # Errors
@@ -173,7 +180,7 @@ impl<'a, T: Real> ChainView<'a, T> {
         for ((j, theta), cov) in self.joints.iter().zip(thetas).zip(covs) {
             let d = j.displacement(j.clip(*theta, false));
             let global = d.transport_covariance(cov);
-            (p, c) = concat_globally(&d, &global, &p, &c, Order::Fourth);
+            (p, c) = concat_globally(&d, &global, &p, &c, Order::FourthPsd);
         }
         let pose = p * self.home;
         let cov = match convention {

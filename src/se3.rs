@@ -245,9 +245,8 @@ pub fn curly_hat<T: Real>(xi: &Vec6<T>) -> Mat6<T> {
 /// Corresponds to pytransform3d's `transform_from_exponential_coordinates` (the
 /// single-instance version). Method: one sin/cos and the coefficients of
 /// `I + aW + bW²` (rotation) and `I + bW + cW²` (left Jacobian, applied to v), with
-/// Taylor series below [`Real::SERIES`]. Accuracy: a few ε absolute in R and
-/// ε·‖v‖ in p, for any ω including tiny ones (pytransform3d's batch formula loses
-/// ε·‖v‖/‖ω‖ there).
+/// Taylor series below [`Real::SERIES`]. Accuracy: a few ε in R and ε·‖v‖ in p for any
+/// ω (8 ε·‖v‖ just above the series cut-off, `tests/robustness_numerics.rs`).
 #[inline]
 pub fn exp<T: Real>(xi: &Vec6<T>) -> Transform<T> {
     let w = xi.rotation();
@@ -287,9 +286,8 @@ pub fn exp<T: Real>(xi: &Vec6<T>) -> Transform<T> {
 /// weights relative to ‖v‖, `a·t = (1 − cos t)/t ≤ 0.73` and `b·t² = (t − sin t)/t ≤
 /// 1.22`, are bounded for all t). Measured against an independent f64 reference over t from 10⁻³⁰ to
 /// 10²⁰⁰ (f32: 10³⁰), including t² within a few ulps of 4 (`tests/ellipsoid_props.rs`):
-/// ≤ 4.7·ε·‖v‖ in f64 and ≤ 4.2·ε·‖v‖ in f32 (≤ 1.7 and ≤ 1.2 ε·‖v‖·max(1, t)). This is
-/// more accurate than [`exp`]'s translation between [`Real::SERIES`] and t ≈ 1, where its
-/// `1 − cos t` loses ≈ ε·‖v‖/(2t) (≈ 1500 ε·‖v‖ at t = 1.3·10⁻⁴ in f64).
+/// ≤ 4.7·ε·‖v‖ in f64 and ≤ 4.2·ε·‖v‖ in f32 (≤ 1.7 and ≤ 1.2 ε·‖v‖·max(1, t)), the
+/// same order as [`exp`]'s translation.
 #[inline(always)]
 pub fn exp_translation<T: Real>(xi: &Vec6<T>) -> Vec3<T> {
     // The coefficients 1/(2k+2)! of a and 1/(2k+3)! of b, k = 0..=11, split by the parity
@@ -376,7 +374,7 @@ fn exp_translation_general<T: Real>(w: &Vec3<T>, v: &Vec3<T>) -> Vec3<T> {
 ///
 /// Corresponds to pytransform3d's `exponential_coordinates_from_transform`. Method: ω
 /// from [`so3::log`], `v = J⁻¹(ω)·p`. Accuracy: a few ε (relative to ‖p‖ for v) away from
-/// π; near π the axis is accurate to ε/(π − θ) at worst (see [`so3::log_axis_angle`]).
+/// π; ω to a few ε at any angle up to π (see [`so3::log_axis_angle`]).
 #[inline]
 pub fn log<T: Real>(t: &Transform<T>) -> Vec6<T> {
     let w = so3::log(&t.rotation);
@@ -464,19 +462,28 @@ pub fn left_jacobian_inv<T: Real>(xi: &Vec6<T>) -> Mat6<T> {
 ///
 /// `S = (ŝ, q × ŝ + h·ŝ)` for finite h (h = 0: revolute), `S = (0, ŝ)` for h = ±∞
 /// (prismatic; q is ignored). Corresponds to pytransform3d's
-/// `screw_axis_from_screw_parameters`. Errors: [`Error::ZeroAxis`] if ‖s‖ = 0,
-/// [`Error::NonFinite`] for NaN anywhere or non-finite q, s.
+/// `screw_axis_from_screw_parameters`. s is divided by its largest component before it
+/// is normalised, so any nonzero finite s works, subnormal or huge; ŝ is a unit vector
+/// to a few ε.
+///
+/// # Errors
+///
+/// [`Error::ZeroAxis`] if s = 0, [`Error::NonFinite`] for NaN anywhere or non-finite q,
+/// s, [`Error::Overflow`] if `q × ŝ + h·ŝ` overflows.
 pub fn screw_axis<T: Real>(q: &Vec3<T>, s: &Vec3<T>, h: T) -> Result<Vec6<T>, Error> {
     if !s.is_finite() || h.is_nan() || (h.is_finite() && !q.is_finite()) {
         return Err(Error::NonFinite);
     }
-    let n = s.norm();
-    if n == T::ZERO {
+    let m = s.amax();
+    if m == T::ZERO {
         return Err(Error::ZeroAxis);
     }
-    let s = s.scale(T::ONE / n);
+    // Divided (1/m overflows for subnormal m): one component ±1, so ‖s‖ ∈ [1, √3].
+    let s = s.map(|x| x / m);
+    let s = s.scale(T::ONE / s.norm());
     if h.is_infinite() {
         return Ok(Vec6::from_parts(Vec3::zeros(), s));
     }
-    Ok(Vec6::from_parts(s, q.cross(&s) + s.scale(h)))
+    let screw = Vec6::from_parts(s, q.cross(&s) + s.scale(h));
+    screw.is_finite().then_some(screw).ok_or(Error::Overflow)
 }

@@ -34,8 +34,9 @@ pub fn vee<T: Real>(m: &Mat3<T>) -> Vec3<T> {
 /// Below [`Real::SERIES`]: x = ω with the Taylor series to t⁴ (truncation < ε) of
 /// `sin t/t`, `(1 − cos t)/t²`, `(t − sin t)/t³`. Above: x = u (unit axis) with
 /// `sin t`, `1 − cos t` and `(1 − cos t)/t`, `(t − sin t)/t`, which never overflow, even
-/// for angles whose square does (f32 beyond 10¹⁹). Cancellation in `1 − cos t` and
-/// `t − sin t` near the cut-off costs ≈ ε/t² relative, i.e. ε absolute.
+/// for angles whose square does (f32 beyond 10¹⁹). `1 − cos t` is `sin²t/(1 + cos t)`
+/// for cos t > 0 (no cancellation: a few ε relative); the cancellation in `t − sin t`
+/// near the cut-off costs ≈ ε/t² relative in `(t − sin t)/t ≈ t²/6`, i.e. ε absolute.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ExpParts<T> {
     x: Vec3<T>,
@@ -64,7 +65,14 @@ impl<T: Real> ExpParts<T> {
             }
         } else {
             let (s, c) = t.sin_cos_r();
-            let omc = T::ONE - c;
+            // 1 − cos t as sin²t/(1 + cos t) while cos t > 0: no cancellation, so
+            // (1 − cos t)/t keeps a few ε relative just above the cut-off (the
+            // subtraction lost ε/t there).
+            let omc = if c > T::ZERO {
+                s * s / (T::ONE + c)
+            } else {
+                T::ONE - c
+            };
             Self {
                 x: w.map(|v| v / t),
                 ra: s,
@@ -114,17 +122,19 @@ pub fn exp<T: Real>(w: &Vec3<T>) -> Mat3<T> {
 
 /// Logarithm as unit axis and angle: `R = Exp(angle · axis)` with angle ∈ [0, π].
 ///
-/// Method (pytransform3d 3.17 `axis_angle_from_matrix`): angle = atan2(½‖r‖, (tr R − 1)/2)
-/// with r the skew part `(R₂₁−R₁₂, R₀₂−R₂₀, R₁₀−R₀₁)`; axis = r/‖r‖, except within
-/// [`Real::NEAR_PI`] of π, where r carries no information and the axis is read from the
-/// symmetric part S = (R + Rᵀ)/2: `|uᵢ| = √((Sᵢᵢ + 1)/2)`, signs from the row of the
-/// largest component, overall sign fixed by r (at exactly π the largest component is
-/// positive, as in the reference). Angle 0 returns axis (1, 0, 0).
+/// Method: angle = atan2(½‖r‖, (tr R − 1)/2) with r the skew part `(R₂₁−R₁₂, R₀₂−R₂₀,
+/// R₁₀−R₀₁)`, as pytransform3d 3.17's `axis_angle_from_matrix`. Axis: r/‖r‖ up to
+/// θ = π/2; beyond, where r shrinks towards π and loses its direction to rounding, the
+/// row k of `S − cos θ·I` (= (1 − cos θ)·u_k·uᵀ, S = (R + Rᵀ)/2) with the largest
+/// diagonal element, normalised, overall sign fixed by r (at exactly π the largest
+/// component is positive, as in the reference). Angle 0 returns axis (1, 0, 0).
 ///
-/// Accuracy: a few ε away from π; at π − δ the skew-part axis has error ≈ ε/δ and the
-/// symmetric-part axis a bias ≈ δ²/(8uᵢ²) in component i (both ≤ 4·10⁻¹² for f64 with
-/// the 10⁻⁶ switch, ≈ 2·10⁻⁵ for f32). Never NaN for finite input; the input need not be
-/// exactly orthonormal.
+/// Accuracy (axis, for elements of R accurate to a few ε): ≈ ε/sin θ up to π/2 (the
+/// axis's own conditioning for small angles, ≤ √2·ε from π/4 on), a few ε beyond; within
+/// 16 ε of the exact axis for θ ∈ [π/2, π] and within 4 ε/sin θ below
+/// (`tests/robustness_numerics.rs`). pytransform3d, which switches only 10⁻⁶ from π, has
+/// an axis error ≈ ε/δ at π − δ outside that band (2·10⁻¹⁰ at its edge) and up to δ/2
+/// inside it. Never NaN for finite input; the input need not be exactly orthonormal.
 pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
     let m = rot.0;
     let r = Vector([m[2][1] - m[1][2], m[0][2] - m[2][0], m[1][0] - m[0][1]]);
@@ -135,7 +145,9 @@ pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
     if angle == T::ZERO || !angle.is_finite() {
         return (x_axis, angle);
     }
-    if T::PI() - angle >= T::NEAR_PI {
+    // Up to π/2 the skew part 2·sin θ·u carries the axis to ε/sin θ ≤ √2·ε; beyond, the
+    // symmetric part does better (below).
+    if cos >= T::ZERO {
         let inv = T::ONE / rn;
         if inv.is_finite() {
             return (r.scale(inv), angle);
@@ -145,34 +157,32 @@ pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
         let rs = r.map(|x| x / m);
         return (rs.scale(T::ONE / rs.norm()), angle);
     }
-    // Near π: uᵢ² ≈ (Sᵢᵢ + 1)/2 from the symmetric part S (exact at π, bias δ²/4 at
-    // π − δ), signs from the row of the largest component: pytransform3d's formula,
-    // kept for f64 parity with it (an exact (Sᵢᵢ − cos θ)/(1 − cos θ) differs by up to
-    // 4·10⁻¹² at δ = 10⁻⁶).
+    // Towards π the skew part ≈ 2δ·u (θ = π − δ) loses its direction to rounding (ε/δ);
+    // the symmetric part is S = cos θ·I + (1 − cos θ)·u·uᵀ with 1 − cos θ ≥ 1, so the row
+    // of B = S − cos θ·I with the largest diagonal element (|u_k| ≥ 1/√3) is
+    // (1 − cos θ)·u_k·u: normalised, u to a few ε. (pytransform3d uses the skew part up
+    // to 10⁻⁶ from π, then |uᵢ| = √((Sᵢᵢ + 1)/2), off by up to δ/2 in a component near 0.)
     let sym = rot.symmetrize();
-    let d = sym
-        .diagonal()
-        .map(|x| ((x + T::ONE) * T::HALF).max(T::ZERO).min(T::ONE));
+    let b = sym - Mat3::identity() * cos;
+    let d = b.diagonal();
     let mut k = 0;
     for i in 1..3 {
         if d.0[i] > d.0[k] {
             k = i;
         }
     }
-    let mut a = d.map(|x| x.sqrt());
-    for (j, aj) in a.0.iter_mut().enumerate() {
-        if j != k && sym.0[k][j] < T::ZERO {
-            *aj = -*aj;
-        }
-    }
-    if angle < T::PI() && a.dot(&r) < T::ZERO {
-        a = -a;
-    }
-    let n = a.norm();
+    let row = Vector(b.0[k]);
+    let n = row.norm();
     if n.is_nan() || n <= T::ZERO || !n.is_finite() {
         return (x_axis, angle);
     }
-    (a.scale(T::ONE / n), angle)
+    // Row k has the sign of u_k; the skew part fixes the overall sign below π. At
+    // exactly π the largest component stays positive, as in the reference.
+    let mut a = row.scale(T::ONE / n);
+    if angle < T::PI() && a.dot(&r) < T::ZERO {
+        a = -a;
+    }
+    (a, angle)
 }
 
 /// Logarithm `Log(R)`: the rotation vector ω = angle · axis with ‖ω‖ ∈ [0, π]
@@ -188,6 +198,12 @@ pub fn log<T: Real>(rot: &Mat3<T>) -> Vec3<T> {
 /// Left Jacobian of SO(3): `J(ω) = I + ((1 − cos θ)/θ²)·W + ((θ − sin θ)/θ³)·W²`.
 ///
 /// Corresponds to pytransform3d's `left_jacobian_SO3`; series below [`Real::SERIES`].
+///
+/// # Accuracy
+///
+/// A few ε absolute in every element for any ω, including just above the series
+/// cut-off (within 8 ε of a series oracle for θ ∈ [SERIES, 64·SERIES],
+/// `tests/robustness_numerics.rs`).
 #[inline]
 pub fn left_jacobian<T: Real>(w: &Vec3<T>) -> Mat3<T> {
     ExpParts::new(w).jacobian()

@@ -37,6 +37,20 @@ fn f32_ill_conditioned(c: &Value) -> bool {
     l.contains("near_pi") || l.contains("/pi") || l.starts_with("pi") || l.contains("large")
 }
 
+/// The expected logarithm: pytransform3d's, except for the `near_pi` cases (π − δ,
+/// δ = 10⁻¹⁰…10⁻³), where its axis is off by ≈ ε/δ (skew part, up to 2·10⁻¹⁰) or by up
+/// to δ/2 (`√((Sᵢᵢ + 1)/2)` within 10⁻⁶ of π) and ppoe reads the axis from the symmetric
+/// part to a few ε: there the oracle is the rotation vector the case was generated from
+/// (R is its exponential to rounding, and near π the axis is well-conditioned in R's
+/// symmetric part).
+fn log_oracle(c: &Value, reference: &str, input: &str) -> Vec<f64> {
+    if c["label"] == "near_pi" {
+        vecf(&c[input])
+    } else {
+        vecf(&c[reference])
+    }
+}
+
 fn so3_case<T: Real>(c: &Value, w: &mut [Worst; 4]) {
     let omega: Vec3<f64> = Vector(vec_n::<3>(&c["omega"]));
     let r: Mat3<f64> = Matrix(mat_n::<3, 3>(&c["R"]));
@@ -46,7 +60,7 @@ fn so3_case<T: Real>(c: &Value, w: &mut [Worst; 4]) {
         w[0].add(rel_err(&flat(&ours), &flat(&r)), &l);
     }
     let log = up_v(&so3::log(&cast_m::<T, 3, 3>(&r)));
-    w[1].add(rel_err(&log.0, &vec_n::<3>(&c["log"])), &l);
+    w[1].add(rel_err(&log.0, &log_oracle(c, "log", "omega")), &l);
     let j = up_m(&so3::left_jacobian(&cast_v::<T, 3>(&omega)));
     w[2].add(
         rel_err(&flat(&j), &flat(&Matrix(mat_n::<3, 3>(&c["J"])))),
@@ -101,7 +115,7 @@ fn run_se3<T: Real>(bound: f64, skip: fn(&Value) -> bool) {
         let t_ref = transform(&c["T_single"]);
         w[0].add(rel_err(&flat_t(&up_t(&se3::exp(&xi))), &flat_t(&t_ref)), &l);
         let log = up_v(&se3::log(&cast_t::<T>(&t_ref)));
-        w[1].add(rel_err(&log.0, &vec_n::<6>(&c["log_single"])), &l);
+        w[1].add(rel_err(&log.0, &log_oracle(&c, "log_single", "xi")), &l);
         let ad = up_m(&cast_t::<T>(&t_ref).adjoint());
         w[2].add(rel_err(&flat(&ad), &flat(&mat6(&c["adjoint"]))), &l);
         w[3].add(

@@ -258,8 +258,14 @@ pub fn run<T: Fz>(inp: &CoreInput) {
             assert!(r.is_err(), "ppoe_checked ({}) accepted non-finite input", T::NAME);
         }
         // The checked entry point also checks the chain (unit screw axes, rigid home pose).
+        // Valid input: Ok, or Overflow if the result is not finite in T (never Ok(±∞/NaN)).
         if inputs_pass && chain.check().is_ok() {
-            assert!(r.is_ok(), "ppoe_checked ({}) rejected valid input: {r:?}", T::NAME);
+            let ok = matches!(r, Ok(_) | Err(Error::Overflow));
+            assert!(ok, "ppoe_checked ({}) rejected valid input: {r:?}", T::NAME);
+        }
+        if let Ok(out) = &r {
+            let finite = out.cov.is_finite() && transform_finite(&out.pose);
+            assert!(finite, "ppoe_checked ({}) returned Ok with a non-finite result", T::NAME);
         }
         if chain.check().is_err() {
             assert!(r.is_err(), "ppoe_checked ({}) accepted an invalid chain", T::NAME);
