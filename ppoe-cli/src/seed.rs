@@ -40,7 +40,7 @@ mod tests {
     use super::*;
 
     fn runtime_chain() -> ppoe_build::RobotChain {
-        let urdf = concat!(env!("CARGO_MANIFEST_DIR"), "/../test_data/urdf/seed.urdf");
+        let urdf = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/seed.urdf");
         ppoe_build::Config::new(urdf)
             .base("linkmount")
             .tip("tcp")
@@ -67,7 +67,7 @@ mod tests {
     #[test]
     fn build_time_frames_equal_runtime_frames() {
         let rt = runtime_chain();
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../test_data/urdf/seed.urdf");
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/seed.urdf");
         let urdf = ppoe_build::Urdf::parse_bytes(&std::fs::read(path).unwrap()).unwrap();
         let frames = crate::frames::joint_home_frames(&urdf, &rt).unwrap();
         assert_eq!(frames.as_slice(), SEED_JOINT_FRAMES.as_slice());
