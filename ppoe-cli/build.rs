@@ -1,5 +1,6 @@
 //! Generates the seed robot's table at build time (the compile-time path a firmware uses):
-//! `SEED: ppoe::chain::Chain<f64, 6>` from `../test_data/urdf/seed.urdf`, base `linkmount`,
+//! `SEED: ppoe::chain::Chain<f64, 6>` from `assets/seed.urdf` (a link to the repository's
+//! `test_data/urdf/seed.urdf`, shipped in the package), base `linkmount`,
 //! tip `tcp`, into `$OUT_DIR/seed_table.rs`; and, for drawing the arm,
 //! `SEED_JOINT_FRAMES`, the home frame of each joint's child link
 //! (`ppoe_build::RobotChain::home_frames`), into `$OUT_DIR/seed_frames.rs`.
@@ -7,7 +8,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-const URDF: &str = "../test_data/urdf/seed.urdf";
+const URDF: &str = "assets/seed.urdf";
 
 fn main() {
     if let Err(e) = run() {

@@ -10,7 +10,7 @@ include!(concat!(env!("OUT_DIR"), "/seed_frames.rs"));
 
 /// The seed robot with its visual geometry (blue, orange and black cylinders, as the seed
 /// example draws it): `test_data/urdf/seed_visuals.urdf`, same chain as `seed.urdf`.
-pub const VISUALS_URDF: &str = include_str!("../../test_data/urdf/seed_visuals.urdf");
+pub const VISUALS_URDF: &str = include_str!("../assets/seed_visuals.urdf");
 
 /// The seed robot's visuals, for the demo's pictures.
 ///
@@ -57,7 +57,7 @@ mod tests {
     use super::*;
 
     fn runtime_chain() -> ppoe_build::RobotChain {
-        let urdf = concat!(env!("CARGO_MANIFEST_DIR"), "/../test_data/urdf/seed.urdf");
+        let urdf = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/seed.urdf");
         ppoe_build::Config::new(urdf)
             .base("linkmount")
             .tip("tcp")
@@ -103,7 +103,7 @@ mod tests {
 
     #[test]
     fn visuals_file_has_the_seed_chain_and_eight_visuals() {
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../test_data/urdf/");
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/");
         let vis = ppoe_build::Config::new(format!("{dir}seed_visuals.urdf"))
             .base("linkmount")
             .tip("tcp")
