@@ -7,6 +7,8 @@
 use ppoe::chain::{Chain, Convention, Joint, JointKind, UncertainPose};
 use ppoe::{Error, Mat3, Mat6, Matrix, Transform, Vec3, Vec6};
 
+/// The bound is the test: this compiles only for types that are `defmt::Format`.
+#[allow(clippy::extra_unused_type_parameters)]
 fn is_format<T: defmt::Format>() -> bool {
     true
 }
