@@ -223,3 +223,13 @@ fn enums_round_trip() {
     );
     assert!(serde_json::from_str::<JointKind>("\"fixed\"").is_err());
 }
+
+#[test]
+fn chain_view_is_written_like_its_chain() {
+    let chain = arm();
+    let view = serde_json::to_value(chain.as_ref()).unwrap();
+    let full = serde_json::to_value(chain).unwrap();
+    assert_eq!(view["joints"], full["joints"]);
+    assert_eq!(view["home"], full["home"]);
+    assert_eq!(view.as_object().unwrap().len(), 2);
+}

@@ -10,6 +10,7 @@
 //! | [`JointKind`] | `"revolute"`, `"continuous"`, `"prismatic"` (URDF's spelling) | |
 //! | [`Joint<T>`] | `{ "name", "kind", "screw": [ωx, ωy, ωz, vx, vy, vz], "lower", "upper" }`; a limit is `null` when unbounded (−∞ / +∞: JSON has no infinity) | [`ChainView::check`] of the joint alone |
 //! | [`Chain<T, N>`] | `{ "base", "tip", "joints": [N joints], "home": Transform }` | [`ChainView::check`] |
+//! | [`ChainView<T>`] | `{ "joints": [joints], "home": Transform }` (serialise only) | |
 //! | [`UncertainPose<T>`] | `{ "pose": Transform, "cov": 6×6 rows }` | pose, and [`check_covariance`] |
 //! | [`Convention`], [`Error`] | the variant's name, e.g. `"Right"`, `"NotARotation"` | |
 //!
@@ -339,6 +340,27 @@ impl<T: Real + Deserialize<'static>, const N: usize> Deserialize<'static> for Ch
         let c = Chain::new(r.base, r.tip, r.joints.0, r.home);
         c.as_ref().check().map_err(de::Error::custom)?;
         Ok(c)
+    }
+}
+
+/// A run-time chain view, written like a [`Chain`] without the link names:
+/// `{ "joints": [...], "home": Transform }` (write only: a view borrows its joints).
+impl<T: Real + Serialize> Serialize for ChainView<'_, T> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut st = s.serialize_struct("ChainView", 2)?;
+        st.serialize_field("joints", &JointSlice(self.joints))?;
+        st.serialize_field("home", &self.home)?;
+        st.end()
+    }
+}
+
+/// The joints of a view: a sequence of run-time length.
+struct JointSlice<'a, T>(&'a [Joint<T>]);
+
+impl<T: Real + Serialize> Serialize for JointSlice<'_, T> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.0)
     }
 }
 
