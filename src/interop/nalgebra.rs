@@ -1,5 +1,6 @@
 //! nalgebra conversions (feature `nalgebra`, built with nalgebra's `libm` feature and
-//! without its default `std`).
+//! without its default `std`). nalgebra 0.34 needs Rust 1.87, above ppoe's own minimum
+//! (1.82), which holds without this feature.
 //!
 //! | ppoe | nalgebra | direction |
 //! |---|---|---|
