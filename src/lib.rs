@@ -19,12 +19,14 @@
 //! | [`scalar`] | the [`Real`] trait and its precision-dependent constants |
 //! | [`linalg`] | fixed-size vectors and matrices, Cholesky, the symmetric eigen-solver |
 //! | [`so3`] | rotations: hat/vee, exp, log, Jacobians |
+//! | [`rotation_forms`] | quaternions `[w, x, y, z]` and URDF roll-pitch-yaw to and from rotations |
 //! | [`se3`] | rigid transforms: exp, log, adjoint, Jacobians, screw axes |
 //! | [`uncertainty`] | uncertain transforms: concatenation, inversion, fusion, estimation |
 //! | [`joint`] | the joint model: kind, screw axis, limits, displacement, joint noise |
 //! | [`chain`] | kinematic chains: forward kinematics, Jacobians, checks, and the PPOE |
 //! | [`surface`] | equiprobable surfaces of an uncertain tool position, for drawing |
 //! | [`error`] | the error type of the checked entry points |
+//! | [`interop`] | ROS covariance order; optional `mint`, `nalgebra`, `serde`, `defmt`, `arbitrary` support |
 //!
 //! The PPOE of a two-joint arm held in a `const` item (what `ppoe-build` generates from
 //! a URDF): the tip pose and the covariance of its right perturbation `T = T̄·Exp(η)`,
@@ -63,9 +65,11 @@
 pub mod chain;
 mod checks;
 pub mod error;
+pub mod interop;
 pub mod joint;
 pub mod linalg;
 mod ppoe;
+pub mod rotation_forms;
 pub mod scalar;
 pub mod se3;
 pub mod so3;
