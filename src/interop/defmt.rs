@@ -111,6 +111,8 @@ impl Format for Error {
             Error::LengthMismatch => "LengthMismatch",
             Error::GridSize => "GridSize",
             Error::InconsistentConstants => "InconsistentConstants",
+            Error::Overflow => "Overflow",
+            Error::NotUnitAxis => "NotUnitAxis",
         };
         write!(f, "{=str}", name)
     }

@@ -219,6 +219,8 @@ enum ErrorRepr {
     LengthMismatch,
     GridSize,
     InconsistentConstants,
+    Overflow,
+    NotUnitAxis,
 }
 
 impl Serialize for Error {
