@@ -190,7 +190,7 @@ impl Progress {
         let mut e = std::io::stderr().lock();
         if !self.tty {
             let quarter = self.total.div_ceil(4).max(1);
-            if done > 0 && (done % quarter == 0 || done == self.total) {
+            if done > 0 && (done.is_multiple_of(quarter) || done == self.total) {
                 let _ = writeln!(e, "{}: {done}/{}", self.what, self.total);
             }
             return;
