@@ -151,6 +151,7 @@
 
 pub mod chain;
 pub mod codegen;
+pub mod codegen_c;
 pub mod error;
 mod math;
 pub mod urdf;
@@ -322,5 +323,24 @@ impl Config {
                 format!("cannot write {}: {e}", path.display()),
             )
         })
+    }
+}
+
+impl Config {
+    /// The generated C header ([`codegen_c::generate`]): the same values as
+    /// [`generate`](Config::generate), as `static const` data of the C API (`ppoe.h`).
+    ///
+    /// # Errors
+    /// As [`generate`](Config::generate), and a name that is a C keyword.
+    pub fn generate_c(&self) -> Result<String> {
+        let name = self.const_name();
+        let bytes = self.read()?;
+        let chain = self.chain_from(&bytes)?;
+        let file_name = self.urdf.file_name().map(|s| s.to_string_lossy().into_owned());
+        let source = Source {
+            file_name: file_name.unwrap_or_default(),
+            sha256: codegen::sha256_hex(&bytes),
+        };
+        codegen_c::generate(&chain, &name, self.scalar, &source).map_err(|e| e.in_file(&self.urdf))
     }
 }
