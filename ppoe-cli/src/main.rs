@@ -2,7 +2,7 @@
 //! pictures of the result.
 //!
 //! ```text
-//! ppoe table --urdf robot.urdf --base base_link --tip tool0 [--scalar f32|f64|both]
+//! ppoe table --urdf robot.urdf --base base_link --tip tool0 [--scalar f32|f64|both] [--lang rust|c]
 //! ppoe eval  --urdf robot.urdf --base base_link --tip tool0 --input cases.json
 //! ppoe demo  [--out DIR] [--sigma K | --probability P] [--surface lift|marginal|pytransform3d]
 //! ppoe render --urdf robot.urdf --base base_link --tip tool0 --input cases.json --format png
@@ -93,6 +93,16 @@ struct TableArgs {
     /// The const's name (default: the URDF file's stem in upper case).
     #[arg(long)]
     name: Option<String>,
+    /// The language: rust (`pub const` items) or c (a C99 header of `static const` data
+    /// for ppoe-ffi's C API, `ppoe.h`).
+    #[arg(long, value_enum, default_value_t = TableLang::Rust)]
+    lang: TableLang,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum TableLang {
+    Rust,
+    C,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -316,7 +326,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             if let Some(n) = &a.name {
                 c.name(n);
             }
-            let src = c.generate()?;
+            let src = match a.lang {
+                TableLang::Rust => c.generate()?,
+                TableLang::C => c.generate_c()?,
+            };
             write_stdout(src.as_bytes())
         }
         Command::Eval(a) => {
