@@ -98,9 +98,10 @@ fn main() {
             "memory/microbit.x"
         } else if target.starts_with("thumbv8m") {
             "memory/mps2-an505.x"
+        } else if target.starts_with("thumbv7em") {
+            "memory/mps2.x" // mps2-an386 (M4, M4F), mps2-an500 (M7)
         } else {
-            // thumbv7m (lm3s6965evb), thumbv7em (mps2-an386 M4F, mps2-an500 M7)
-            "memory/lm3s6965evb.x"
+            "memory/lm3s6965evb.x" // thumbv7m
         };
         fs::copy(mem, out_dir.join("memory.x")).expect("copy memory.x");
         println!("cargo:rustc-link-search={}", out_dir.display());
