@@ -51,7 +51,8 @@ struct PpoeArgs<T> {
     cov: *mut T,
 }
 
-unsafe fn ppoe<T: Real>(a: PpoeArgs<T>, checked: bool) -> ppoe_status {
+/// `CHECKED` a constant: each entry point links only its own path.
+unsafe fn ppoe<T: Real, const CHECKED: bool>(a: PpoeArgs<T>) -> ppoe_status {
     let mut joints = Joints::new();
     let mut covs = Covs::new();
     run(|| {
@@ -60,7 +61,7 @@ unsafe fn ppoe<T: Real>(a: PpoeArgs<T>, checked: bool) -> ppoe_status {
         let th = unsafe { convert::thetas(a.thetas, a.n_thetas) }?;
         unsafe { convert::covs(a.covs, a.n_covs, &mut covs) }?;
         let conv = convert::convention(a.convention)?;
-        let r = if checked {
+        let r = if CHECKED {
             c.ppoe_checked(th, &covs, conv)
         } else {
             c.ppoe(th, &covs, conv)
@@ -161,7 +162,7 @@ pub unsafe extern "C" fn ppoe_ppoe_f32(
         cov: cov_out,
     };
     // SAFETY: the caller's contract.
-    unsafe { ppoe(a, false) }
+    unsafe { ppoe::<_, false>(a) }
 }
 
 /// `ppoe_ppoe_f32` in double precision (f64 within 1e-12 relative of the host's result).
@@ -190,7 +191,7 @@ pub unsafe extern "C" fn ppoe_ppoe_f64(
         cov: cov_out,
     };
     // SAFETY: the caller's contract.
-    unsafe { ppoe(a, false) }
+    unsafe { ppoe::<_, false>(a) }
 }
 
 /// `ppoe_ppoe_f32` with input checks: the chain (`ppoe_chain_check_f32`), every θ finite,
@@ -223,7 +224,7 @@ pub unsafe extern "C" fn ppoe_ppoe_checked_f32(
         cov: cov_out,
     };
     // SAFETY: the caller's contract.
-    unsafe { ppoe(a, true) }
+    unsafe { ppoe::<_, true>(a) }
 }
 
 /// `ppoe_ppoe_checked_f32` in double precision.
@@ -252,7 +253,7 @@ pub unsafe extern "C" fn ppoe_ppoe_checked_f64(
         cov: cov_out,
     };
     // SAFETY: the caller's contract.
-    unsafe { ppoe(a, true) }
+    unsafe { ppoe::<_, true>(a) }
 }
 
 /// A static NUL-terminated English description of a status ("unknown status" for a
