@@ -336,7 +336,10 @@ impl Config {
         let name = self.const_name();
         let bytes = self.read()?;
         let chain = self.chain_from(&bytes)?;
-        let file_name = self.urdf.file_name().map(|s| s.to_string_lossy().into_owned());
+        let file_name = self
+            .urdf
+            .file_name()
+            .map(|s| s.to_string_lossy().into_owned());
         let source = Source {
             file_name: file_name.unwrap_or_default(),
             sha256: codegen::sha256_hex(&bytes),
