@@ -63,7 +63,7 @@ for a in "$@"; do
     --no-icount) ;;
     --no-panic-check) PANIC_CHECK=0 ;;
     --no-budgets) BUDGET_CHECK=0 ;;
-    -h|--help) sed -n '2,54p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,53p' "$0"; exit 0 ;;
     -*) echo "firmware: unknown option $a" >&2; exit 2 ;;
     *) LABELS+=("$a") ;;
   esac

@@ -275,8 +275,16 @@ fn main() -> ! {
         TOL_F32
     );
 
+    measure(&EXPECTED[0]);
+    hprintln!("RESULT: {}", if all { "PASS" } else { "FAIL" });
+    platform::exit(all)
+}
+
+/// Prints the cost of one 6-DOF PPOE call on case `c` (instructions: meaningful under
+/// -icount shift=0 only, see [`ticks_per_call`]), of the small ops, and the stack of one
+/// PPOE call.
+fn measure(c: &Case) {
     // Cost of one 6-DOF PPOE call (meaningful under -icount shift=0 only, see above).
-    let c = &EXPECTED[0];
     let covs64: [Mat6<f64>; 6] = c.covs.map(Matrix);
     let th32 = c.thetas.map(|t| t as f32);
     let covs32: [Mat6<f32>; 6] = c.covs.map(|m| Matrix(m.map(|r| r.map(|x| x as f32))));
@@ -322,7 +330,4 @@ fn main() -> ! {
         s32,
         s64
     );
-
-    hprintln!("RESULT: {}", if all { "PASS" } else { "FAIL" });
-    platform::exit(all)
 }
