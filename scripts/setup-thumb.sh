@@ -7,7 +7,10 @@
 #   rustc-web cargo-web rust-web-src libstd-rust-web-dev  -> /usr/bin/rustc, /usr/bin/cargo,
 #                                                            library sources for build-std
 #   binutils-arm-none-eabi                                -> arm-none-eabi-{ld,size,nm,objdump}
-#   qemu-system-arm                                       -> running firmware (later)
+#   qemu-system-arm                                       -> running Cortex-M firmware
+#   qemu-system-misc                                      -> qemu-system-riscv32 (RISC-V firmware)
+#   gcc-arm-none-eabi libnewlib-arm-none-eabi             -> the C firmware (examples/c-firmware)
+# and, from crates.io, cbindgen (a pinned version: ppoe-ffi's header is checked against it).
 # Debian's rustc has no rust-lld: we use rustup's (~/.rustup/toolchains/*/lib/rustlib/<host>/bin/
 # rust-lld) and fall back to arm-none-eabi-ld.
 #
@@ -31,7 +34,8 @@ esac
 log() { echo "setup-thumb: $*" >&2; }
 die() { echo "setup-thumb: ERROR: $*" >&2; exit 1; }
 
-PKGS=(rustc-web cargo-web rust-web-src libstd-rust-web-dev binutils-arm-none-eabi qemu-system-arm)
+PKGS=(rustc-web cargo-web rust-web-src libstd-rust-web-dev binutils-arm-none-eabi qemu-system-arm
+      qemu-system-misc gcc-arm-none-eabi libnewlib-arm-none-eabi)
 
 is_installed() {  # dpkg's view: "install ok installed"
   [ "$(dpkg-query -W -f='${db:Status-Status}' "$1" 2>/dev/null || true)" = installed ]
@@ -67,6 +71,14 @@ else
   log "all packages present (${PKGS[*]})"
 fi
 
+# --- cbindgen (the C header of ppoe-ffi is generated and checked against it) -----------------
+CBINDGEN_VERSION=0.29.4
+if ! command -v cbindgen >/dev/null || [ "$(cbindgen --version 2>/dev/null)" != "cbindgen $CBINDGEN_VERSION" ]; then
+  log "cargo install cbindgen $CBINDGEN_VERSION (the C header check needs this exact version)"
+  env -u RUSTC -u RUSTC_BOOTSTRAP cargo install -q --locked cbindgen --version "$CBINDGEN_VERSION" >&2 \
+    || die "cargo install cbindgen failed"
+fi
+
 # --- Debian's compiler and its library sources -------------------------------------------
 THUMB_RUSTC=/usr/bin/rustc
 [ -x "$THUMB_RUSTC" ] || die "$THUMB_RUSTC missing after install"
@@ -74,7 +86,8 @@ THUMB_SYSROOT=$("$THUMB_RUSTC" --print sysroot)
 LIBSRC=$THUMB_SYSROOT/lib/rustlib/src/rust/library
 [ -f "$LIBSRC/core/Cargo.toml" ] || die "library sources for build-std not found at $LIBSRC (rust-web-src)"
 TARGET_LIST=$("$THUMB_RUSTC" --print target-list)
-for t in thumbv6m-none-eabi thumbv7m-none-eabi thumbv7em-none-eabihf thumbv8m.main-none-eabihf; do
+for t in thumbv6m-none-eabi thumbv7m-none-eabi thumbv7em-none-eabi thumbv7em-none-eabihf \
+         thumbv8m.main-none-eabihf riscv32imac-unknown-none-elf riscv32imafc-unknown-none-elf; do
   grep -qx "$t" <<<"$TARGET_LIST" || die "$THUMB_RUSTC does not know target $t"
 done
 
@@ -108,7 +121,9 @@ log "sysroot: $THUMB_SYSROOT (build-std sources: $LIBSRC)"
 log "cargo:   /usr/bin/cargo ($(first_line /usr/bin/cargo -V)); rustup's: $(first_line env -u RUSTC cargo -V)"
 log "linker:  $THUMB_LINKER ($THUMB_LINKER_FLAVOR)"
 log "binutils: $(first_line arm-none-eabi-size --version)"
-log "qemu:    $(first_line qemu-system-arm --version)"
+log "qemu:    $(first_line qemu-system-arm --version); $(first_line qemu-system-riscv32 --version)"
+log "gcc:     $(first_line arm-none-eabi-gcc --version)"
+log "cbindgen: $(first_line cbindgen --version)"
 
 if [ $PRINT_ENV = 1 ]; then
   printf 'THUMB_RUSTC=%q\nTHUMB_SYSROOT=%q\nTHUMB_LINKER=%q\nTHUMB_LINKER_FLAVOR=%q\n' \

@@ -160,6 +160,7 @@
 pub mod chain;
 pub mod codegen;
 mod dtd;
+pub mod codegen_c;
 pub mod error;
 pub mod literal;
 mod math;
@@ -346,4 +347,26 @@ fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         .inspect_err(|_| {
             let _ = std::fs::remove_file(&tmp);
         })
+}
+
+impl Config {
+    /// The generated C header ([`codegen_c::generate`]): the same values as
+    /// [`generate`](Config::generate), as `static const` data of the C API (`ppoe.h`).
+    ///
+    /// # Errors
+    /// As [`generate`](Config::generate), and a name that is a C keyword.
+    pub fn generate_c(&self) -> Result<String> {
+        let name = self.const_name();
+        let bytes = self.read()?;
+        let chain = self.chain_from(&bytes)?;
+        let file_name = self
+            .urdf
+            .file_name()
+            .map(|s| s.to_string_lossy().into_owned());
+        let source = Source {
+            file_name: file_name.unwrap_or_default(),
+            sha256: codegen::sha256_hex(&bytes),
+        };
+        codegen_c::generate(&chain, &name, self.scalar, &source).map_err(|e| e.in_file(&self.urdf))
+    }
 }

@@ -2,7 +2,7 @@
 //! pictures of the result.
 //!
 //! ```text
-//! ppoe table --urdf robot.urdf --base base_link --tip tool0 [--scalar f32|f64|both]
+//! ppoe table --urdf robot.urdf --base base_link --tip tool0 [--scalar f32|f64|both] [--lang rust|c]
 //! ppoe eval  --urdf robot.urdf --base base_link --tip tool0 --input cases.json
 //! ppoe demo  [--out DIR] [--sigma K | --probability P] [--surface lift|marginal|pytransform3d]
 //! ppoe render --urdf robot.urdf --base base_link --tip tool0 --input cases.json --format png
@@ -136,6 +136,16 @@ struct TableArgs {
     /// The const's name (default: the URDF file's stem in upper case).
     #[arg(long)]
     name: Option<String>,
+    /// The language: rust (`pub const` items) or c (a C99 header of `static const` data
+    /// for ppoe-ffi's C API, `ppoe.h`).
+    #[arg(long, value_enum, default_value_t = TableLang::Rust)]
+    lang: TableLang,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum TableLang {
+    Rust,
+    C,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -502,8 +512,11 @@ fn table(a: &TableArgs) -> anyhow::Result<()> {
         file_name: robot.source.file_name.clone(),
         sha256: ppoe_build::codegen::sha256_hex(&robot.source.bytes),
     };
-    let src = ppoe_build::codegen::generate(&robot.chain, &name, scalar, &source)
-        .map_err(|e| load::in_input(&robot.source.name, &e))?;
+    let src = match a.lang {
+        TableLang::Rust => ppoe_build::codegen::generate(&robot.chain, &name, scalar, &source),
+        TableLang::C => ppoe_build::codegen_c::generate(&robot.chain, &name, scalar, &source),
+    }
+    .map_err(|e| load::in_input(&robot.source.name, &e))?;
     output::print(src.as_bytes())
 }
 

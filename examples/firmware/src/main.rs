@@ -1,6 +1,7 @@
-//! ppoe on a Cortex-M core: the seed robot's PPOE in f64 and f32 against expectations
-//! computed on the host at build time (see build.rs). Prints a summary over semihosting and
-//! exits QEMU with status 0 if every case matches, 1 otherwise (a panic exits with 1 too).
+//! ppoe on a microcontroller core: the seed robot's PPOE in f64 and f32 against
+//! expectations computed on the host at build time (see build.rs). Prints a summary over
+//! semihosting and exits QEMU with status 0 if every case matches, 1 otherwise (a panic
+//! exits with 1 too). Cortex-M (src/arm.rs) and RISC-V (src/riscv.rs) share this file.
 //!
 //! Tolerances (`max|a−b| / max(1, max|b|)` over the pose's 4×4 and, separately, the 6×6
 //! covariance): f64 ≤ 1e-12, f32 ≤ 1e-5 (the project's documented bounds, README
@@ -9,12 +10,21 @@
 #![no_std]
 #![no_main]
 
+#[cfg(target_arch = "arm")]
+#[path = "arm.rs"]
+mod platform;
+#[cfg(target_arch = "riscv32")]
+#[path = "riscv.rs"]
+mod platform;
+
 use core::hint::black_box;
-use cortex_m_rt::entry;
-use cortex_m_semihosting::{debug, hprintln};
-use panic_semihosting as _;
 use ppoe::chain::{Convention, UncertainPose};
 use ppoe::{se3, uncertainty, Mat6, Matrix, Real, Transform, Vec6, Vector};
+
+/// `hprintln!` on every platform.
+macro_rules! hprintln {
+    ($($arg:tt)*) => { platform::println(format_args!($($arg)*)) };
+}
 
 // SEED: Chain<f64, 6> and SEED_F32: Chain<f32, 6>, generated from the URDF by ppoe-build.
 include!(concat!(env!("OUT_DIR"), "/seed_table.rs"));
@@ -97,9 +107,9 @@ pub fn ppoe_concat_f32(
     uncertainty::concat_globally(a, ca, b, cb, uncertainty::Order::Second)
 }
 
-/// Cost of the small ops (exp, log, second-order concat) in one scalar type: SysTick ticks
-/// for `REPS` = 64 calls each, `[exp, log, concat]`; under -icount shift=0 on the mps2
-/// boards, instructions per call = ticks × 40 / 64 (see [`systick_per_call`]).
+/// Cost of the small ops (exp, log, second-order concat) in one scalar type: counter ticks
+/// for `REPS` = 64 calls each, `[exp, log, concat]`; under -icount shift=0, instructions
+/// per call = ticks × [`platform::INSNS_PER_TICK`] / 64 (see [`ticks_per_call`]).
 fn op_ticks<T: Real>(
     exp: fn(&Vec6<T>) -> Transform<T>,
     log: fn(&Transform<T>) -> Vec6<T>,
@@ -111,13 +121,13 @@ fn op_ticks<T: Real>(
     let (a, b) = (se3::exp(&xi), se3::exp(&xi2));
     let cov = Mat6::from_diagonal(&Vector([1e-3, 2e-3, 5e-4, 1e-3, 3e-3, 2e-3].map(T::lit)));
     [
-        systick_total(REPS, || {
+        ticks_total(REPS, || {
             black_box(exp(black_box(&xi)));
         }),
-        systick_total(REPS, || {
+        ticks_total(REPS, || {
             black_box(log(black_box(&a)));
         }),
-        systick_total(REPS, || {
+        ticks_total(REPS, || {
             black_box(concat(
                 black_box(&a),
                 black_box(&cov),
@@ -170,48 +180,29 @@ fn case_err(pose: &[[f64; 4]; 4], cov: &[[f64; 6]; 6], c: &Case) -> f64 {
     }
 }
 
-/// SysTick ticks (core clock) per call of `f`, averaged over `reps` calls. Under
-/// `qemu -icount shift=0` one instruction takes 1 ns; the mps2 boards clock SysTick at
-/// 25 MHz, so 1 tick = 40 instructions there. Without -icount the number means nothing.
-fn systick_per_call(reps: u32, f: impl FnMut()) -> u32 {
-    systick_total(reps, f) / reps
+/// Counter ticks per call of `f`, averaged over `reps` calls; instructions =
+/// ticks × [`platform::INSNS_PER_TICK`] under `qemu -icount shift=0` (meaningless without).
+fn ticks_per_call(reps: u32, f: impl FnMut()) -> u32 {
+    platform::ticks_total(reps, f) / reps
 }
 
-/// SysTick ticks (core clock) for `reps` calls of `f` (see [`systick_per_call`]).
-fn systick_total(reps: u32, mut f: impl FnMut()) -> u32 {
-    use cortex_m::peripheral::{syst::SystClkSource, SYST};
-    // SAFETY: single-threaded firmware, no interrupt handlers use SysTick.
-    let mut cp = unsafe { cortex_m::Peripherals::steal() };
-    cp.SYST.set_clock_source(SystClkSource::Core);
-    cp.SYST.set_reload(0x00FF_FFFF);
-    cp.SYST.clear_current();
-    cp.SYST.enable_counter();
-    let s0 = SYST::get_current();
-    for _ in 0..reps {
-        f();
-    }
-    let s1 = SYST::get_current();
-    cp.SYST.disable_counter();
-    s0.wrapping_sub(s1) & 0x00FF_FFFF
+/// Counter ticks for `reps` calls of `f` (see [`ticks_per_call`]).
+fn ticks_total(reps: u32, f: impl FnMut()) -> u32 {
+    platform::ticks_total(reps, f)
 }
 
 const PAINT: u32 = 0x5AFE_C0DE;
-
-extern "C" {
-    /// End of .bss/.uninit (cortex-m-rt's linker script): the stack grows down towards it.
-    static mut __sheap: u32;
-}
 
 /// Stack bytes used by `f` (high-water mark): paints the free stack below the current
 /// stack pointer, runs `f`, and finds the lowest word that changed.
 #[inline(never)]
 fn stack_used(f: impl FnOnce()) -> usize {
-    let lo = core::ptr::addr_of_mut!(__sheap) as usize;
-    let sp = cortex_m::register::msp::read() as usize;
+    let lo = platform::stack_floor();
+    let sp = platform::stack_pointer();
     let hi = sp - 256; // leave this function's own frame and the painting loop alone
     let mut p = (lo + 3) & !3;
     while p < hi {
-        // SAFETY: [__sheap, sp - 256) is free stack memory, word aligned.
+        // SAFETY: [stack floor, sp - 256) is free stack memory, word aligned.
         unsafe { (p as *mut u32).write_volatile(PAINT) };
         p += 4;
     }
@@ -224,7 +215,21 @@ fn stack_used(f: impl FnOnce()) -> usize {
     sp - p
 }
 
-#[entry]
+/// One line with the bits of an f32 result (pose 4×4 then covariance 6×6, row-major, as
+/// hex words): scripts/firmware.sh compares these lines between the soft- and hard-float
+/// builds of the same core.
+fn print_f32_bits(name: &str, r: &UncertainPose<f32>) {
+    let mut words = [0u32; 52];
+    let pose = r.pose.to_matrix4();
+    let flat = pose.iter().flatten().chain(r.cov.0.iter().flatten());
+    for (w, x) in words.iter_mut().zip(flat) {
+        *w = x.to_bits();
+    }
+    hprintln!("f32 bits {}: {:08x?}", name, words);
+}
+
+#[cfg_attr(target_arch = "arm", platform::entry)]
+#[cfg_attr(target_arch = "riscv32", export_name = "main")]
 fn main() -> ! {
     hprintln!(
         "ppoe firmware: seed robot, {} cases, f64 and f32",
@@ -241,6 +246,7 @@ fn main() -> ! {
         let covs32: [Mat6<f32>; 6] = c.covs.map(|m| Matrix(m.map(|r| r.map(|x| x as f32))));
         let r32 = ppoe_seed_f32(black_box(&th32), black_box(&covs32));
         let e32 = case_err(&to_f64(&r32.pose.to_matrix4()), &to_f64(&r32.cov.0), c);
+        print_f32_bits(c.name, &r32);
 
         let ok = e64 <= TOL_F64 && e32 <= TOL_F32;
         passed += usize::from(ok);
@@ -269,21 +275,31 @@ fn main() -> ! {
         TOL_F32
     );
 
+    measure(&EXPECTED[0]);
+    hprintln!("RESULT: {}", if all { "PASS" } else { "FAIL" });
+    platform::exit(all)
+}
+
+/// Prints the cost of one 6-DOF PPOE call on case `c` (instructions: meaningful under
+/// -icount shift=0 only, see [`ticks_per_call`]), of the small ops, and the stack of one
+/// PPOE call.
+fn measure(c: &Case) {
     // Cost of one 6-DOF PPOE call (meaningful under -icount shift=0 only, see above).
-    let c = &EXPECTED[0];
     let covs64: [Mat6<f64>; 6] = c.covs.map(Matrix);
     let th32 = c.thetas.map(|t| t as f32);
     let covs32: [Mat6<f32>; 6] = c.covs.map(|m| Matrix(m.map(|r| r.map(|x| x as f32))));
-    let t32 = systick_per_call(16, || {
+    let t32 = ticks_per_call(16, || {
         black_box(ppoe_seed_f32(black_box(&th32), black_box(&covs32)));
     });
-    let t64 = systick_per_call(4, || {
+    let t64 = ticks_per_call(4, || {
         black_box(ppoe_seed_f64(black_box(&c.thetas), black_box(&covs64)));
     });
     hprintln!(
-        "systick ticks per PPOE call: f32 {} f64 {} (x40 = instructions under qemu -icount shift=0 on mps2 boards; meaningless otherwise)",
+        "{} per PPOE call: f32 {} f64 {} (x{} = instructions under qemu -icount shift=0 on mps2 boards and riscv virt; meaningless otherwise)",
+        platform::COUNTER,
         t32,
-        t64
+        t64,
+        platform::INSNS_PER_TICK
     );
 
     // Instructions of the small ops (same meaning as the PPOE line above).
@@ -294,10 +310,12 @@ fn main() -> ! {
         .enumerate()
     {
         hprintln!(
-            "systick ticks per 64 calls of {}: f32 {} f64 {} (x40/64 = instructions per call under qemu -icount shift=0; meaningless otherwise)",
+            "{} per 64 calls of {}: f32 {} f64 {} (x{}/64 = instructions per call under qemu -icount shift=0; meaningless otherwise)",
+            platform::COUNTER,
             name,
             o32[i],
-            o64[i]
+            o64[i],
+            platform::INSNS_PER_TICK
         );
     }
 
@@ -312,14 +330,4 @@ fn main() -> ! {
         s32,
         s64
     );
-
-    if all {
-        hprintln!("RESULT: PASS");
-        debug::exit(debug::EXIT_SUCCESS);
-    } else {
-        hprintln!("RESULT: FAIL");
-        debug::exit(debug::EXIT_FAILURE);
-    }
-    #[allow(clippy::empty_loop)]
-    loop {}
 }
