@@ -120,9 +120,9 @@ static int chain_errors(const double *th, const double *covs, double *pose, doub
     for (i = 0; i < 6; i++) {
         joints[1].screw[i] *= 2.0;
     }
-    f += expect("check, doubled screw", ppoe_chain_check_f64(&ch), PPOE_ERR_ZERO_AXIS);
+    f += expect("check, doubled screw", ppoe_chain_check_f64(&ch), PPOE_ERR_NOT_UNIT_AXIS);
     f += expect("checked PPOE, doubled screw",
-                ppoe_ppoe_checked_f64(&ch, th, 6, covs, 6, 0, pose, cov), PPOE_ERR_ZERO_AXIS);
+                ppoe_ppoe_checked_f64(&ch, th, 6, covs, 6, 0, pose, cov), PPOE_ERR_NOT_UNIT_AXIS);
     memcpy(joints, SEED_JOINTS, sizeof joints);
     joints[2].axis[0] += 0.5;
     f += expect("check, altered constants", ppoe_chain_check_f64(&ch),

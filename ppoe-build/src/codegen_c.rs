@@ -160,7 +160,7 @@ fn joint<T: Real>(out: &mut String, name: &str, j: &Joint<T>, f32_table: bool) -
     let _ = writeln!(out, "    {{{}, {kind},", c_str(name));
     let _ = writeln!(out, "     {},", list(&j.screw.0, f32_table)?);
     let _ = writeln!(out, "     {}, {},", lit(j.lower)?, lit(j.upper)?);
-    match &j.constants {
+    match &j.constants() {
         Some(k) => {
             let _ = writeln!(out, "     1, {},", lit(k.scale)?);
             for v in [k.axis, k.axis_sq, k.axis_prod, k.v, k.axis_cross_v] {

@@ -274,8 +274,8 @@ typedef struct ppoe_chain_f64 {
 #define PPOE_ERR_NOT_A_ROTATION 6
 
 /*
- A screw axis does not have unit length (or zero rotation and unit translation for a
- prismatic joint).
+ A screw axis whose relevant part (rotation; translation for a prismatic joint) is
+ exactly zero.
  */
 #define PPOE_ERR_ZERO_AXIS 7
 

@@ -268,7 +268,7 @@ pub extern "C" fn ppoe_status_message(status: ppoe_status) -> *const c_char {
         PPOE_ERR_NOT_POSITIVE_SEMIDEFINITE => c"covariance is not positive semi-definite",
         PPOE_ERR_SINGULAR => c"matrix is singular or not positive definite",
         PPOE_ERR_NOT_A_ROTATION => c"rotation part is not orthonormal with determinant +1",
-        PPOE_ERR_ZERO_AXIS => c"screw axis does not have unit length",
+        PPOE_ERR_ZERO_AXIS => c"screw axis is zero",
         PPOE_ERR_EMPTY => c"no input elements",
         PPOE_ERR_TOO_FEW_SAMPLES => c"too few samples",
         PPOE_ERR_BUFFER_TOO_SMALL => c"output buffer too small",
@@ -277,6 +277,9 @@ pub extern "C" fn ppoe_status_message(status: ppoe_status) -> *const c_char {
         PPOE_ERR_TOO_MANY_JOINTS => c"more than PPOE_MAX_JOINTS joints",
         PPOE_ERR_BAD_ENUM => c"convention or joint kind out of range",
         PPOE_ERR_OTHER => c"other error",
+        PPOE_ERR_OVERFLOW => c"a result overflowed although the inputs were finite",
+        PPOE_ERR_NOT_UNIT_AXIS => c"screw axis does not have unit length",
+        PPOE_ERR_GRID_SIZE => c"surface grid needs at least two steps",
         _ => c"unknown status",
     };
     s.as_ptr()

@@ -41,8 +41,8 @@ pub const PPOE_ERR_NOT_POSITIVE_SEMIDEFINITE: ppoe_status = 4;
 pub const PPOE_ERR_SINGULAR: ppoe_status = 5;
 /// A rotation part (the home pose's) is not orthonormal with determinant +1.
 pub const PPOE_ERR_NOT_A_ROTATION: ppoe_status = 6;
-/// A screw axis does not have unit length (or zero rotation and unit translation for a
-/// prismatic joint).
+/// A screw axis whose relevant part (rotation; translation for a prismatic joint) is
+/// exactly zero.
 pub const PPOE_ERR_ZERO_AXIS: ppoe_status = 7;
 /// A collection input is empty.
 pub const PPOE_ERR_EMPTY: ppoe_status = 8;
