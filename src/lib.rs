@@ -38,6 +38,7 @@ pub mod chain;
 pub mod ellipsoid;
 pub mod error;
 pub mod linalg;
+pub mod rank1;
 pub mod scalar;
 pub mod se3;
 pub mod so3;
