@@ -7,17 +7,20 @@
 //! ppoe demo  [--out DIR] [--sigma K | --probability P] [--surface lift|marginal|pytransform3d]
 //! ppoe render --urdf robot.urdf --base base_link --tip tool0 --input cases.json --format png
 //! ppoe mesh   --urdf robot.urdf --base base_link --tip tool0 --input cases.json --format obj
+//! ppoe fit    --urdf robot.urdf --base base_link --tip tool0 --input data.json --model joint
 //! ```
 //!
 //! Errors are reported as one line on stderr (`error: ...`) with exit status 1.
 
 mod draw;
 mod eval;
+mod fit;
 mod frames;
 mod mesh;
 mod picture;
 mod seed;
 
+use anyhow::Context;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -52,6 +55,40 @@ enum Command {
     /// Write the equiprobable surface (and the skeleton as lines) of each case of a JSON
     /// file (the input of `ppoe eval`) as a mesh for Blender or MeshLab.
     Mesh(MeshArgs),
+    /// Fit the per-joint noise covariances to joint values recorded with tool poses
+    /// measured by an external tracker (maximum likelihood of the PPOE's model).
+    ///
+    /// Input: {"samples":[{"thetas":[N numbers],"pose":[[4×4 row-major, tip in base]]}],
+    /// "measurement_cov": optional 6×6, the tracker's noise in the tip frame (rotation
+    /// first)}. Output (stdout, or --out written atomically): {"model","joints":[{"name",
+    /// "cov" (6×6, what `eval` takes as covs[i]),"cov_se","sigma2","sigma2_se"}],
+    /// "log_likelihood","samples","converged","identifiability","goodness_of_fit",
+    /// "warnings",...}; a summary (estimate ± standard error per joint) on stderr.
+    Fit(FitArgs),
+}
+
+/// Which per-joint noise `fit` estimates.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum FitModel {
+    /// One variance per joint along its screw axis (encoder noise, backlash).
+    Joint,
+    /// Any 6×6 PSD covariance per joint (flexible links).
+    Full,
+}
+
+#[derive(Args, Debug)]
+struct FitArgs {
+    #[command(flatten)]
+    chain: ChainArgs,
+    /// The input JSON file (default: standard input).
+    #[arg(long, value_name = "FILE")]
+    input: Option<PathBuf>,
+    /// The noise model to fit.
+    #[arg(long, value_enum)]
+    model: FitModel,
+    /// Write the result to FILE (atomically) instead of standard output.
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
 }
 
 /// Which chain of which URDF.
@@ -151,6 +188,10 @@ struct EvalArgs {
     /// Indent the output JSON.
     #[arg(long)]
     pretty: bool,
+    /// Take every case's covariances from a noise model written by `ppoe fit` (the cases
+    /// then give no "covs").
+    #[arg(long, value_name = "FILE")]
+    noise: Option<PathBuf>,
 }
 
 /// Which equiprobable surface of the tool position to draw.
@@ -321,7 +362,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Eval(a) => {
             let robot = a.chain.config().chain()?;
-            let input = eval::read_input(a.input.as_deref())?;
+            let mut input = eval::read_input(a.input.as_deref())?;
+            if let Some(p) = &a.noise {
+                fit::apply_noise(&mut input, &fit::read_noise(p, &robot)?)?;
+            }
             let out = eval::eval(&robot, &input, a.scalar, a.convention.core())?;
             let mut text = if a.pretty {
                 serde_json::to_string_pretty(&out)?
@@ -362,6 +406,25 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 println!("wrote {}", p.display());
             }
             Ok(())
+        }
+        Command::Fit(a) => {
+            let robot = a.chain.config().chain()?;
+            let text = match &a.input {
+                Some(p) => std::fs::read_to_string(p)
+                    .with_context(|| format!("cannot read the input file {}", p.display()))?,
+                None => std::io::read_to_string(std::io::stdin())
+                    .context("cannot read the input from standard input")?,
+            };
+            let model = match a.model {
+                FitModel::Joint => ppoe_fit::Model::Joint,
+                FitModel::Full => ppoe_fit::Model::Full,
+            };
+            let mut text = serde_json::to_string_pretty(&fit::run(&robot, &text, model)?)?;
+            text.push('\n');
+            match &a.out {
+                Some(p) => fit::write_atomic(p, text.as_bytes()),
+                None => write_stdout(text.as_bytes()),
+            }
         }
         Command::Mesh(a) => {
             let frames = draw::frames_for_cases(&a.chain, a.input.as_deref(), &a.surface)?;
