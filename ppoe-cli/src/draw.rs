@@ -131,6 +131,7 @@ pub fn frames_for_cases(
     chain_args: &ChainArgs,
     input: Option<&Path>,
     surface: &SurfaceArgs,
+    noise: Option<&Path>,
 ) -> anyhow::Result<Vec<Frame>> {
     let (k, label) = level(surface)?;
     let config = chain_args.config();
@@ -139,7 +140,10 @@ pub fn frames_for_cases(
         .with_context(|| format!("cannot read {}", chain_args.urdf.display()))?;
     let urdf = ppoe_build::Urdf::parse_bytes(&bytes)?;
     let home_frames = frames::joint_home_frames(&urdf, &robot).map_err(anyhow::Error::msg)?;
-    let input = eval::read_input(input)?;
+    let mut input = eval::read_input(input)?;
+    if let Some(p) = noise {
+        crate::fit::apply_noise(&mut input, &crate::fit::read_noise(p, &robot)?)?;
+    }
     if input.cases.is_empty() {
         bail!("the input has no cases");
     }
@@ -223,11 +227,19 @@ impl Progress {
 }
 
 /// `ppoe demo`: the seed example from the build-time table.
-pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Result<()> {
+pub fn demo(
+    out: &Path,
+    surface: &SurfaceArgs,
+    n_frames: usize,
+    noise: Option<&Path>,
+) -> anyhow::Result<()> {
     let start = Instant::now();
     let (k, label) = level(surface)?;
     let chain = seed::SEED.as_ref();
-    let covs = seed::covs();
+    let covs = match noise {
+        Some(p) => crate::fit::seed_noise(p)?,
+        None => seed::covs(),
+    };
     let grid = surface.grid as usize;
 
     let initial = state(

@@ -207,3 +207,21 @@ pub fn apply_noise(input: &mut crate::eval::Input, covs: &[[[f64; 6]; 6]]) -> an
     }
     Ok(())
 }
+
+/// The seed robot's covariances from a noise model (`demo --noise`), checked against the
+/// seed table's joint names.
+pub fn seed_noise(path: &Path) -> anyhow::Result<[ppoe::Mat6<f64>; 6]> {
+    let model = NoiseModel::read(path)?;
+    let names: Vec<&str> = crate::seed::SEED.joints.iter().map(|j| j.name).collect();
+    let mine: Vec<&str> = model.joints.iter().map(|j| j.name.as_str()).collect();
+    if names != mine {
+        bail!(
+            "{}: the noise model's joints [{}] are not the seed robot's [{}]",
+            path.display(),
+            mine.join(", "),
+            names.join(", ")
+        );
+    }
+    let covs = model.covs();
+    Ok(std::array::from_fn(|i| covs[i]))
+}

@@ -130,6 +130,10 @@ struct TableArgs {
     /// The const's name (default: the URDF file's stem in upper case).
     #[arg(long)]
     name: Option<String>,
+    /// Also emit NAME_NOISE (and NAME_SIGMA2 for the joint model) from a noise model
+    /// written by `ppoe fit`.
+    #[arg(long, value_name = "FILE")]
+    noise: Option<PathBuf>,
 }
 
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -240,6 +244,10 @@ struct DemoArgs {
     out: PathBuf,
     #[command(flatten)]
     surface: SurfaceArgs,
+    /// Use the joint covariances of a noise model written by `ppoe fit` for the seed
+    /// robot instead of the example's.
+    #[arg(long, value_name = "FILE")]
+    noise: Option<PathBuf>,
     /// The number of animation frames (angle = 0.5·cos(2π(0.5 + step/N))).
     #[arg(long, value_name = "N", default_value_t = 200,
           value_parser = clap::value_parser!(u32).range(1..=10000))]
@@ -260,6 +268,9 @@ struct RenderArgs {
     /// The input JSON file (the input of `ppoe eval`; default: standard input).
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
+    /// Take every case's covariances from a noise model written by `ppoe fit`.
+    #[arg(long, value_name = "FILE")]
+    noise: Option<PathBuf>,
     /// png or svg: one picture per case (ppoe-render-<i>.<ext>); gif: one animation of
     /// all cases (ppoe-render.gif).
     #[arg(long, value_enum, default_value_t = ImageFormat::Png)]
@@ -284,6 +295,9 @@ struct MeshArgs {
     /// The input JSON file (the input of `ppoe eval`; default: standard input).
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
+    /// Take every case's covariances from a noise model written by `ppoe fit`.
+    #[arg(long, value_name = "FILE")]
+    noise: Option<PathBuf>,
     /// One file per case: ppoe-mesh-<i>.obj or ppoe-mesh-<i>.ply.
     #[arg(long, value_enum, default_value_t = MeshFormat::Obj)]
     format: MeshFormat,
@@ -357,6 +371,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             if let Some(n) = &a.name {
                 c.name(n);
             }
+            if let Some(p) = &a.noise {
+                c.noise(p);
+            }
             let src = c.generate()?;
             write_stdout(src.as_bytes())
         }
@@ -375,9 +392,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             text.push('\n');
             write_stdout(text.as_bytes())
         }
-        Command::Demo(a) => draw::demo(&a.out, &a.surface, a.frames as usize),
+        Command::Demo(a) => draw::demo(&a.out, &a.surface, a.frames as usize, a.noise.as_deref()),
         Command::Render(a) => {
-            let frames = draw::frames_for_cases(&a.chain, a.input.as_deref(), &a.surface)?;
+            let frames =
+                draw::frames_for_cases(&a.chain, a.input.as_deref(), &a.surface, a.noise.as_deref())?;
             draw::ensure_dir(&a.out)?;
             let mut written = Vec::new();
             match a.format {
@@ -427,7 +445,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
         }
         Command::Mesh(a) => {
-            let frames = draw::frames_for_cases(&a.chain, a.input.as_deref(), &a.surface)?;
+            let frames =
+                draw::frames_for_cases(&a.chain, a.input.as_deref(), &a.surface, a.noise.as_deref())?;
             draw::ensure_dir(&a.out)?;
             for (i, frame) in frames.iter().enumerate() {
                 let p = match a.format {
