@@ -81,7 +81,9 @@ fn benches<T: Real>(c: &mut Criterion) {
     let w = p.cross(&z);
     let screw = [z.0[0], z.0[1], z.0[2], w.0[0], w.0[1], w.0[2]];
     let s = screw.map(|x| Real::to_f64(x));
-    seven.push(Joint::from_f64(&Joint::new("j7", JointKind::Revolute, s, -3.0, 3.0).prepared()));
+    seven.push(Joint::from_f64(
+        &Joint::new("j7", JointKind::Revolute, s, -3.0, 3.0).prepared(),
+    ));
     bench_chain(c, "seven", &seven, home);
 }
 

@@ -114,8 +114,7 @@ fn rank1_checked<T: Real>(
         return Err(Error::NotPositiveSemidefinite);
     }
     let out = rank1(chain.joints, &chain.home, thetas, sigma2, convention);
-    if !out.pose.rotation.is_finite() || !out.pose.translation.is_finite() || !out.cov.is_finite()
-    {
+    if !out.pose.rotation.is_finite() || !out.pose.translation.is_finite() || !out.cov.is_finite() {
         return Err(Error::NonFinite);
     }
     Ok(out)

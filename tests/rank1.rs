@@ -19,12 +19,17 @@ const CONVENTIONS: [Convention; 3] = [
 ];
 
 fn max_rel<T: Real>(a: &Mat6<T>, b: &Mat6<T>) -> f64 {
-    let scale = b.0.iter().flatten().fold(0.0f64, |m, x| m.max(Real::to_f64(*x).abs()));
+    let scale =
+        b.0.iter()
+            .flatten()
+            .fold(0.0f64, |m, x| m.max(Real::to_f64(*x).abs()));
     let diff =
         a.0.iter()
             .flatten()
             .zip(b.0.iter().flatten())
-            .fold(0.0f64, |m, (x, y)| m.max((Real::to_f64(*x) - Real::to_f64(*y)).abs()));
+            .fold(0.0f64, |m, (x, y)| {
+                m.max((Real::to_f64(*x) - Real::to_f64(*y)).abs())
+            });
     if scale == 0.0 {
         diff
     } else {
@@ -78,7 +83,10 @@ fn golden_chains<T: Real>(bound: f64) {
             }
         }
     }
-    eprintln!("{}: worst rank-1 vs dense {worst:.2e}", core::any::type_name::<T>());
+    eprintln!(
+        "{}: worst rank-1 vs dense {worst:.2e}",
+        core::any::type_name::<T>()
+    );
 }
 
 #[test]
@@ -112,7 +120,7 @@ fn jacobian_identity() {
         }
         let mut want = Mat6::<f64>::zeros();
         for (u, s) in cols.iter().zip(s2) {
-            want = want + u.outer(u).scale(s);
+            want += u.outer(u).scale(s);
         }
         let got = chain.ppoe_rank1(&th, &s2, c).unwrap().cov;
         assert!(max_rel(&got, &want) < 1e-14, "{c:?}");
@@ -126,11 +134,41 @@ const ARM: Chain<f64, 6> = Chain::new(
     "tip",
     [
         Joint::new("a", JointKind::Revolute, [0., 0., 1., 0., 0., 0.], -3., 3.),
-        Joint::new("b", JointKind::Revolute, [0., 1., 0., -0.4, 0., 0.1], -2., 2.),
-        Joint::new("c", JointKind::Prismatic, [0., 0., 0., 0.6, 0., 0.8], 0., 0.5),
-        Joint::new("d", JointKind::Continuous, [1., 0., 0., 0., 0.9, -0.2], -1., 1.),
-        Joint::new("e", JointKind::Revolute, [0., 0.6, 0.8, 0.3, -0.8, 0.6], -INF, INF),
-        Joint::new("f", JointKind::Revolute, [0., 0., 1., 0.2, -1.1, 0.], -3., 3.),
+        Joint::new(
+            "b",
+            JointKind::Revolute,
+            [0., 1., 0., -0.4, 0., 0.1],
+            -2.,
+            2.,
+        ),
+        Joint::new(
+            "c",
+            JointKind::Prismatic,
+            [0., 0., 0., 0.6, 0., 0.8],
+            0.,
+            0.5,
+        ),
+        Joint::new(
+            "d",
+            JointKind::Continuous,
+            [1., 0., 0., 0., 0.9, -0.2],
+            -1.,
+            1.,
+        ),
+        Joint::new(
+            "e",
+            JointKind::Revolute,
+            [0., 0.6, 0.8, 0.3, -0.8, 0.6],
+            -INF,
+            INF,
+        ),
+        Joint::new(
+            "f",
+            JointKind::Revolute,
+            [0., 0., 1., 0.2, -1.1, 0.],
+            -3.,
+            3.,
+        ),
     ],
     Transform::from_parts([[0., -1., 0.], [1., 0., 0.], [0., 0., 1.]], [1.1, 0.2, 0.9]),
 );
@@ -169,7 +207,10 @@ fn checked_errors() {
     assert!(ARM.ppoe_rank1_checked(&th, &ok, Convention::Right).is_ok());
     let mut bad = ok;
     bad[2] = f64::NAN;
-    assert_eq!(ARM.ppoe_rank1_checked(&th, &bad, Convention::Right), Err(Error::NonFinite));
+    assert_eq!(
+        ARM.ppoe_rank1_checked(&th, &bad, Convention::Right),
+        Err(Error::NonFinite)
+    );
     bad[2] = -1e-6;
     assert_eq!(
         ARM.ppoe_rank1_checked(&th, &bad, Convention::Right),
@@ -177,16 +218,28 @@ fn checked_errors() {
     );
     let mut th_bad = th;
     th_bad[0] = f64::INFINITY;
-    assert_eq!(ARM.ppoe_rank1_checked(&th_bad, &ok, Convention::Left), Err(Error::NonFinite));
+    assert_eq!(
+        ARM.ppoe_rank1_checked(&th_bad, &ok, Convention::Left),
+        Err(Error::NonFinite)
+    );
     // Finite inputs whose product overflows: the output check catches it.
     assert_eq!(
         ARM.ppoe_rank1_checked(&th, &[1e308; 6], Convention::Right),
         Err(Error::NonFinite)
     );
     let r = ARM.as_ref();
-    assert_eq!(r.ppoe_rank1(&th[..5], &ok, Convention::Right), Err(Error::LengthMismatch));
-    assert_eq!(r.ppoe_rank1_checked(&th, &ok[..5], Convention::Right), Err(Error::LengthMismatch));
+    assert_eq!(
+        r.ppoe_rank1(&th[..5], &ok, Convention::Right),
+        Err(Error::LengthMismatch)
+    );
+    assert_eq!(
+        r.ppoe_rank1_checked(&th, &ok[..5], Convention::Right),
+        Err(Error::LengthMismatch)
+    );
     let mut broken = ARM;
     broken.joints[1].screw.0[1] = 2.0; // not a unit axis
-    assert_eq!(broken.ppoe_rank1_checked(&th, &ok, Convention::Right), Err(Error::ZeroAxis));
+    assert_eq!(
+        broken.ppoe_rank1_checked(&th, &ok, Convention::Right),
+        Err(Error::ZeroAxis)
+    );
 }

@@ -116,7 +116,10 @@ impl NoiseModel {
 
     /// The per-joint covariances as core matrices.
     pub fn covs(&self) -> Vec<ppoe::Mat6<f64>> {
-        self.joints.iter().map(|j| ppoe::Mat6::from(j.cov)).collect()
+        self.joints
+            .iter()
+            .map(|j| ppoe::Mat6::from(j.cov))
+            .collect()
     }
 }
 
@@ -163,7 +166,13 @@ pub fn generate(model: &NoiseModel, name: &str, scalar: Scalar, file_name: &str)
         }
         out.push_str("];\n");
         let sig: Option<Vec<String>> = (model.model == "joint")
-            .then(|| model.joints.iter().map(|j| j.sigma2.map(|s| literal(s, f32))).collect())
+            .then(|| {
+                model
+                    .joints
+                    .iter()
+                    .map(|j| j.sigma2.map(|s| literal(s, f32)))
+                    .collect()
+            })
             .flatten();
         if let Some(sig) = sig {
             let _ = write!(

@@ -11,9 +11,12 @@ use std::io::Write;
 use std::path::Path;
 use std::time::Instant;
 
+/// The parsed input: the samples and the tracker's noise.
+type FitInput = (Vec<Sample>, Option<[[f64; 6]; 6]>);
+
 /// Parses the input `{"samples":[{"thetas":[N],"pose":[[4×4]]}],"measurement_cov":6×6}`;
 /// errors name the sample.
-pub fn parse_input(text: &str) -> anyhow::Result<(Vec<Sample>, Option<[[f64; 6]; 6]>)> {
+pub fn parse_input(text: &str) -> anyhow::Result<FitInput> {
     let v: Value = serde_json::from_str(text).context(
         "malformed input JSON (expected {\"samples\":[{\"thetas\":[N numbers],\"pose\":[[4×4]]}], \
          \"measurement_cov\": optional 6×6})",
@@ -40,9 +43,9 @@ pub fn parse_input(text: &str) -> anyhow::Result<(Vec<Sample>, Option<[[f64; 6];
     }
     let r = match v.get("measurement_cov") {
         None | Some(Value::Null) => None,
-        Some(m) => Some(
-            matrix::<6>(Some(m)).context("\"measurement_cov\" must be 6 rows of 6 numbers")?,
-        ),
+        Some(m) => {
+            Some(matrix::<6>(Some(m)).context("\"measurement_cov\" must be 6 rows of 6 numbers")?)
+        }
     };
     Ok((samples, r))
 }
@@ -59,7 +62,9 @@ fn matrix<const N: usize>(v: Option<&Value>) -> anyhow::Result<[[f64; N]; N]> {
             bail!("row {r} does not hold {N} numbers");
         };
         for (c, (o, x)) in out.iter_mut().zip(row).enumerate() {
-            *o = x.as_f64().with_context(|| format!("[{r}][{c}] is not a number"))?;
+            *o = x
+                .as_f64()
+                .with_context(|| format!("[{r}][{c}] is not a number"))?;
         }
     }
     Ok(m)
@@ -130,14 +135,23 @@ fn summary(f: &Fit, seconds: f64) {
         f.model.name(),
         f.samples,
         f.log_likelihood,
-        if f.converged { "converged" } else { "NOT converged" },
+        if f.converged {
+            "converged"
+        } else {
+            "NOT converged"
+        },
         f.iterations
     );
     for j in &f.joints {
         match (j.sigma2, j.sigma2_se) {
             (Some(s), se) => {
                 let se = se.map_or("undetermined".into(), |x| format!("{x:.2e}"));
-                let _ = writeln!(e, "  {:<16} sigma² = {s:.3e} ± {se}  (sigma = {:.3e})", j.name, s.sqrt());
+                let _ = writeln!(
+                    e,
+                    "  {:<16} sigma² = {s:.3e} ± {se}  (sigma = {:.3e})",
+                    j.name,
+                    s.sqrt()
+                );
             }
             _ => {
                 let d: Vec<String> = (0..6)
@@ -151,7 +165,10 @@ fn summary(f: &Fit, seconds: f64) {
         }
     }
     if let Some([r, t]) = f.residual_floor {
-        let _ = writeln!(e, "  residual floor: {r:.2e} rad², {t:.2e} m² (not part of the joints' noise)");
+        let _ = writeln!(
+            e,
+            "  residual floor: {r:.2e} rad², {t:.2e} m² (not part of the joints' noise)"
+        );
     }
     let id = &f.identifiability;
     let _ = writeln!(
@@ -167,7 +184,11 @@ fn summary(f: &Fit, seconds: f64) {
         g.mean_mahalanobis,
         100.0 * g.beyond_99,
         g.p_value,
-        if g.fits { "consistent with the model" } else { "the model does NOT fit" }
+        if g.fits {
+            "consistent with the model"
+        } else {
+            "the model does NOT fit"
+        }
     );
     for w in &f.warnings {
         let _ = writeln!(e, "warning: {w}");
@@ -177,9 +198,16 @@ fn summary(f: &Fit, seconds: f64) {
 /// Writes `bytes` to `path` atomically: a temporary file in the same directory, then a
 /// rename over the target.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     let name = path.file_name().context("--out has no file name")?;
-    let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
+    let tmp = dir.join(format!(
+        ".{}.tmp{}",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
     let result = std::fs::write(&tmp, bytes)
         .and_then(|()| std::fs::rename(&tmp, path))
         .with_context(|| format!("cannot write {}", path.display()));
@@ -192,7 +220,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
 /// The noise model of `--noise FILE`, checked against the chain.
 pub fn read_noise(path: &Path, robot: &RobotChain) -> anyhow::Result<Vec<[[f64; 6]; 6]>> {
     let model = NoiseModel::read(path)?;
-    model.check_against(robot).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    model
+        .check_against(robot)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     Ok(model.joints.iter().map(|j| j.cov).collect())
 }
 

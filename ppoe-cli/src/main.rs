@@ -394,8 +394,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Demo(a) => draw::demo(&a.out, &a.surface, a.frames as usize, a.noise.as_deref()),
         Command::Render(a) => {
-            let frames =
-                draw::frames_for_cases(&a.chain, a.input.as_deref(), &a.surface, a.noise.as_deref())?;
+            let frames = draw::frames_for_cases(
+                &a.chain,
+                a.input.as_deref(),
+                &a.surface,
+                a.noise.as_deref(),
+            )?;
             draw::ensure_dir(&a.out)?;
             let mut written = Vec::new();
             match a.format {
@@ -445,8 +449,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
         }
         Command::Mesh(a) => {
-            let frames =
-                draw::frames_for_cases(&a.chain, a.input.as_deref(), &a.surface, a.noise.as_deref())?;
+            let frames = draw::frames_for_cases(
+                &a.chain,
+                a.input.as_deref(),
+                &a.surface,
+                a.noise.as_deref(),
+            )?;
             draw::ensure_dir(&a.out)?;
             for (i, frame) in frames.iter().enumerate() {
                 let p = match a.format {

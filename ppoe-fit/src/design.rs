@@ -270,31 +270,48 @@ mod tests {
         let mut prepared = Prepared {
             eta: Vec::new(),
             transports: Vec::new(),
-            screws: vec![Vector6::new(0., 0., 1., 0., 0.3, 0.), Vector6::new(1., 0., 0., 0., 0., 0.2)],
+            screws: vec![
+                Vector6::new(0., 0., 1., 0., 0.3, 0.),
+                Vector6::new(1., 0., 0., 0., 0., 0.2),
+            ],
             clipped: 0,
         };
         for k in 0..20 {
             let f = k as f64;
-            prepared.eta.push(Vector6::from_fn(|i, _| ((i as f64 + 1.0) * (f + 0.3)).sin() * 0.01));
+            prepared.eta.push(Vector6::from_fn(|i, _| {
+                ((i as f64 + 1.0) * (f + 0.3)).sin() * 0.01
+            }));
             prepared.transports.push(
                 (0..2)
-                    .map(|j| Matrix6::from_fn(|r, c| ((r * 7 + c * 3 + j * 5) as f64 + f).cos() + if r == c { 2.0 } else { 0.0 }))
+                    .map(|j| {
+                        Matrix6::from_fn(|r, c| {
+                            ((r * 7 + c * 3 + j * 5) as f64 + f).cos()
+                                + if r == c { 2.0 } else { 0.0 }
+                        })
+                    })
                     .collect(),
             );
         }
         for joint_model in [true, false] {
             let d = Design::new(&prepared, joint_model, true, Matrix6::identity() * 1e-6);
-            let x: Vec<Matrix6<f64>> = d
-                .m
-                .iter()
-                .enumerate()
-                .map(|(t, &m)| {
-                    let mut a = Matrix6::from_fn(|r, c| if r < m && c < m { ((r + 2 * c + t) as f64).sin() * 0.1 } else { 0.0 });
-                    a = a * a.transpose() * 1e-3;
-                    for i in 0..m { a[(i, i)] += 1e-4; }
-                    a
-                })
-                .collect();
+            let x: Vec<Matrix6<f64>> =
+                d.m.iter()
+                    .enumerate()
+                    .map(|(t, &m)| {
+                        let mut a = Matrix6::from_fn(|r, c| {
+                            if r < m && c < m {
+                                ((r + 2 * c + t) as f64).sin() * 0.1
+                            } else {
+                                0.0
+                            }
+                        });
+                        a = a * a.transpose() * 1e-3;
+                        for i in 0..m {
+                            a[(i, i)] += 1e-4;
+                        }
+                        a
+                    })
+                    .collect();
             let mo = d.moments(&x, 1).unwrap();
             for (ia, u) in d.units.iter().enumerate() {
                 let h = 1e-7;
@@ -308,7 +325,11 @@ mod tests {
                 }
                 let num = (d.loglik(&xp).unwrap() - d.loglik(&xm).unwrap()) / (2.0 * h);
                 let rel = (num - mo.grad[ia]).abs() / num.abs().max(1.0);
-                assert!(rel < 1e-4, "{joint_model} unit {u:?}: {num} vs {}", mo.grad[ia]);
+                assert!(
+                    rel < 1e-4,
+                    "{joint_model} unit {u:?}: {num} vs {}",
+                    mo.grad[ia]
+                );
             }
         }
     }

@@ -62,7 +62,10 @@ impl fmt::Display for FitError {
                 write!(f, "sample {sample}: {what} is not finite")
             }
             FitError::NotRigid { sample, why } => {
-                write!(f, "sample {sample}: the pose is not a rigid transform: {why}")
+                write!(
+                    f,
+                    "sample {sample}: the pose is not a rigid transform: {why}"
+                )
             }
             FitError::BadMeasurementCov(why) => write!(f, "measurement_cov: {why}"),
             FitError::BadChain(why) => write!(f, "the chain is invalid: {why}"),

@@ -57,12 +57,20 @@ fn scoring_step(f: &DMatrix<f64>, g: &DVector<f64>, mu: f64) -> DVector<f64> {
     DVector::from_fn(p, |i, _| step[i] * d[i])
 }
 
-/// `θ + t·Δ` with t ≤ 1 halved until no term's coefficient matrix changes by more than
+/// Full model: `θ + t·Δ` with t ≤ 1 halved until no term's coefficient matrix changes by more than
 /// its own size (relative Frobenius norm): the scoring metric is a local model of the
 /// likelihood in the coefficients, and the parameterisations are nonlinear in them (a
 /// log-Cholesky entry far below its neighbours can otherwise jump by orders of
 /// magnitude).
 fn trusted(param: &Param, theta: &DVector<f64>, step: DVector<f64>) -> DVector<f64> {
+    if param.model == crate::param::Model::Joint {
+        // Log-variances: a step is a factor per variance, at most e³ = 20 per step (a
+        // floor variance at its bound has a vanishing Fisher information, and its scoring
+        // step alone could overflow).
+        let mut cand = theta + step.map(|s| s.clamp(-3.0, 3.0));
+        param.clamp(&mut cand);
+        return cand;
+    }
     let x0 = param.coeffs(theta);
     let mut t = 1.0;
     loop {
@@ -130,7 +138,9 @@ pub(crate) fn maximize(
         }
         if std::env::var_os("PPOE_FIT_DEBUG").is_some() {
             let g0 = 0.5 * g.dot(&scoring_step(&f, &g, 0.0));
-            eprintln!("it {iterations} loglik {loglik} mu {mu:e} moved {moved} undamped gain {g0:e}");
+            eprintln!(
+                "it {iterations} loglik {loglik} mu {mu:e} moved {moved} undamped gain {g0:e}"
+            );
         }
         if converged {
             break;

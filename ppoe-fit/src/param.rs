@@ -62,7 +62,9 @@ impl Param {
                     .collect();
                 if self.floor_min.is_some() {
                     let (r, t) = (th[self.n].exp(), th[self.n + 1].exp());
-                    x.push(Matrix6::from_diagonal(&nalgebra::Vector6::new(r, r, r, t, t, t)));
+                    x.push(Matrix6::from_diagonal(&nalgebra::Vector6::new(
+                        r, r, r, t, t, t,
+                    )));
                 }
                 x
             }
@@ -165,7 +167,10 @@ impl Param {
         match self.model {
             Model::Joint => {
                 let n = self.n;
-                let top = (0..n).map(|i| natural[i]).fold(0.0f64, f64::max).max(1e-300);
+                let top = (0..n)
+                    .map(|i| natural[i])
+                    .fold(0.0f64, f64::max)
+                    .max(1e-300);
                 for i in 0..n {
                     th[i] = natural[i].max(1e-6 * top).ln();
                 }
@@ -190,7 +195,7 @@ impl Param {
 
 impl Param {
     /// θ for given full-model coefficient matrices (factors of their PD projections).
-    pub fn from_coeffs(&self, x: &[Matrix6<f64>]) -> DVector<f64> {
+    pub fn theta_of(&self, x: &[Matrix6<f64>]) -> DVector<f64> {
         let mut th = DVector::zeros(self.len());
         for (i, c) in x.iter().enumerate().take(self.n) {
             let l = psd_factor(c);

@@ -124,7 +124,9 @@ fn kolmogorov_q(lambda: f64) -> f64 {
 }
 
 /// The 99 % quantiles of χ² with 1…6 degrees of freedom.
-const Q99: [f64; 7] = [0.0, 6.634_897, 9.210_340, 11.344_867, 13.276_704, 15.086_272, 16.811_894];
+const Q99: [f64; 7] = [
+    0.0, 6.634_897, 9.210_340, 11.344_867, 13.276_704, 15.086_272, 16.811_894,
+];
 
 /// `d`: (squared Mahalanobis distance, its dimension) per sample.
 pub(crate) fn goodness_of_fit(d: &[(f64, usize)]) -> GoodnessOfFit {

@@ -14,11 +14,11 @@ use ppoe::{Mat6, Transform};
 /// EM cycles before each round of Fisher scoring (full model), the most rounds, and the
 /// log-likelihood gain of a round below which the full model counts as converged: at
 /// covariances of lower rank the optimum is on the boundary of the PSD cone, where the
-/// gradient does not vanish, and 0.05 is a likelihood-ratio χ² of 0.1, statistically
-/// nothing.
+/// gradient does not vanish, and 0.5 is a likelihood-ratio χ² of 1 over all the
+/// parameters, statistically nothing.
 const EM_CYCLES: usize = 15;
-const ROUNDS: usize = 10;
-const ROUND_TOL: f64 = 0.05;
+const ROUNDS: usize = 12;
+const ROUND_TOL: f64 = 0.5;
 
 /// The full model: rounds of a few EM cycles (monotone and PSD: they bring a start whose
 /// Σ is nearly singular, or a scoring run stalled at covariances of lower rank, to where
@@ -34,7 +34,7 @@ fn full_rounds(
     for round in 0..ROUNDS {
         let (x, _, cycles, _) =
             crate::optimize::em(design, param.coeffs(&theta), EM_CYCLES, progress)?;
-        let mut out = maximize(design, param, param.from_coeffs(&x), progress)?;
+        let mut out = maximize(design, param, param.theta_of(&x), progress)?;
         iterations += cycles + out.iterations;
         out.converged |= out.loglik - last < ROUND_TOL;
         if out.converged || round + 1 == ROUNDS {
@@ -214,8 +214,16 @@ fn check_measurement(r: Option<&[[f64; 6]; 6]>) -> Result<Matrix6<f64>, FitError
 /// translation components (and an error if the residuals are all zero).
 fn floor_min(data: &Prepared) -> Result<[f64; 2], FitError> {
     let k = data.eta.len() as f64;
-    let rot = data.eta.iter().map(|e| e.fixed_rows::<3>(0).norm_squared()).sum::<f64>();
-    let tra = data.eta.iter().map(|e| e.fixed_rows::<3>(3).norm_squared()).sum::<f64>();
+    let rot = data
+        .eta
+        .iter()
+        .map(|e| e.fixed_rows::<3>(0).norm_squared())
+        .sum::<f64>();
+    let tra = data
+        .eta
+        .iter()
+        .map(|e| e.fixed_rows::<3>(3).norm_squared())
+        .sum::<f64>();
     if rot + tra == 0.0 {
         return Err(FitError::Numerical(
             "every measured pose equals the forward kinematics exactly: no noise to fit".into(),
@@ -252,7 +260,9 @@ fn natural_names(joints: &[Joint<f64>], model: Model, floor: bool) -> Vec<String
         Model::Full => joints
             .iter()
             .flat_map(|j| {
-                (0..6).flat_map(move |p| (p..6).map(move |q| format!("cov[{p}][{q}] of joint '{}'", j.name)))
+                (0..6).flat_map(move |p| {
+                    (p..6).map(move |q| format!("cov[{p}][{q}] of joint '{}'", j.name))
+                })
             })
             .collect(),
     }
@@ -281,8 +291,14 @@ fn identifiability_check(
     let configs = crate::simulate::configurations(joints, 300, 0x5eed);
     let spread = Prepared {
         eta: vec![Vector6::zeros(); configs.len()],
-        transports: configs.iter().map(|t| transports(joints, home, t).0).collect(),
-        screws: joints.iter().map(|j| Vector6::from_fn(|i, _| j.screw.0[i])).collect(),
+        transports: configs
+            .iter()
+            .map(|t| transports(joints, home, t).0)
+            .collect(),
+        screws: joints
+            .iter()
+            .map(|j| Vector6::from_fn(|i, _| j.screw.0[i]))
+            .collect(),
         clipped: 0,
     };
     let floor = param.floor_min.is_some();
@@ -297,7 +313,11 @@ fn identifiability_check(
              undetermined: {}. Record configurations that move every joint over its range",
             data.rank,
             best.rank,
-            if missing.is_empty() { "combinations of several parameters".to_string() } else { missing.join(", ") }
+            if missing.is_empty() {
+                "combinations of several parameters".to_string()
+            } else {
+                missing.join(", ")
+            }
         )));
     }
     Ok((data, best.rank))
@@ -366,10 +386,19 @@ fn identifiability(info: &Information, determinable: usize, names: &[String]) ->
 }
 
 /// The warnings of a finished fit.
-fn warnings(fit: &Fit, design: &Design, x: &[Matrix6<f64>], clipped: usize, needed: usize) -> Vec<String> {
+fn warnings(
+    fit: &Fit,
+    design: &Design,
+    x: &[Matrix6<f64>],
+    clipped: usize,
+    needed: usize,
+) -> Vec<String> {
     let mut w = Vec::new();
     if !fit.converged {
-        w.push(format!("Fisher scoring did not converge in {} iterations", fit.iterations));
+        w.push(format!(
+            "Fisher scoring did not converge in {} iterations",
+            fit.iterations
+        ));
     }
     if fit.samples < 10 * needed {
         w.push(format!(
@@ -380,7 +409,9 @@ fn warnings(fit: &Fit, design: &Design, x: &[Matrix6<f64>], clipped: usize, need
         ));
     }
     if clipped > 0 {
-        w.push(format!("{clipped} samples had a joint value outside its limits (clipped, as the PPOE clips)"));
+        w.push(format!(
+            "{clipped} samples had a joint value outside its limits (clipped, as the PPOE clips)"
+        ));
     }
     let g = &fit.goodness_of_fit;
     if !g.fits {
@@ -393,8 +424,12 @@ fn warnings(fit: &Fit, design: &Design, x: &[Matrix6<f64>], clipped: usize, need
         ));
     }
     if let Some([fr, ft]) = fit.residual_floor {
-        let joints_only: Vec<Matrix6<f64>> =
-            x.iter().take(x.len() - 1).copied().chain([Matrix6::zeros()]).collect();
+        let joints_only: Vec<Matrix6<f64>> = x
+            .iter()
+            .take(x.len() - 1)
+            .copied()
+            .chain([Matrix6::zeros()])
+            .collect();
         let k = design.eta.len() as f64;
         let (mut vr, mut vt) = (0.0, 0.0);
         for i in 0..design.eta.len() {
@@ -421,8 +456,12 @@ fn distances(design: &Design, x: &[Matrix6<f64>], d6: &[f64], floor: bool) -> Ve
         return d6.iter().map(|d| (*d, 6)).collect();
     }
     let floor = x[x.len() - 1];
-    let joints_only: Vec<Matrix6<f64>> =
-        x.iter().take(x.len() - 1).copied().chain([Matrix6::zeros()]).collect();
+    let joints_only: Vec<Matrix6<f64>> = x
+        .iter()
+        .take(x.len() - 1)
+        .copied()
+        .chain([Matrix6::zeros()])
+        .collect();
     design
         .eta
         .iter()

@@ -56,10 +56,14 @@ fn rigid(index: usize, m: &[[f64; 4]; 4]) -> Result<Transform<f64>, FitError> {
     let r = Matrix3::from_fn(|i, j| m[i][j]);
     let dev = (r.transpose() * r - Matrix3::identity()).amax();
     if dev > RIGID_TOL {
-        return Err(not(format!("RᵀR differs from I by {dev:.2e} (tolerance 1e-6)")));
+        return Err(not(format!(
+            "RᵀR differs from I by {dev:.2e} (tolerance 1e-6)"
+        )));
     }
     if r.determinant() <= 0.0 {
-        return Err(not("the rotation part has determinant ≤ 0 (a reflection)".into()));
+        return Err(not(
+            "the rotation part has determinant ≤ 0 (a reflection)".into()
+        ));
     }
     let svd = r.svd(true, true);
     let (Some(u), Some(vt)) = (svd.u, svd.v_t) else {

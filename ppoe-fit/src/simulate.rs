@@ -15,7 +15,12 @@ use rand_distr::StandardNormal;
 pub fn configurations(joints: &[Joint<f64>], count: usize, seed: u64) -> Vec<Vec<f64>> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     (0..count)
-        .map(|_| joints.iter().map(|j| uniform_in_limits(j, &mut rng)).collect())
+        .map(|_| {
+            joints
+                .iter()
+                .map(|j| uniform_in_limits(j, &mut rng))
+                .collect()
+        })
         .collect()
 }
 
@@ -60,7 +65,14 @@ pub fn samples(
     seed: u64,
 ) -> Vec<Sample> {
     let configs = configurations(joints, count, seed);
-    samples_at(joints, home, covs, measurement_cov, &configs, seed ^ 0x9e37_79b9)
+    samples_at(
+        joints,
+        home,
+        covs,
+        measurement_cov,
+        &configs,
+        seed ^ 0x9e37_79b9,
+    )
 }
 
 /// Samples of the exact model at the given configurations.

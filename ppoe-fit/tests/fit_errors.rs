@@ -18,10 +18,20 @@ fn malformed_samples_name_the_sample() {
     let run = |s: &[ppoe_fit::Sample]| fit(&joints, &home, s, None, Model::Joint, &mut |_, _| {});
     let mut s = good.clone();
     s[7].thetas.pop();
-    assert!(matches!(run(&s), Err(FitError::WrongLength { sample: 7, got: 5, expected: 6 })));
+    assert!(matches!(
+        run(&s),
+        Err(FitError::WrongLength {
+            sample: 7,
+            got: 5,
+            expected: 6
+        })
+    ));
     let mut s = good.clone();
     s[3].thetas[2] = f64::NAN;
-    assert!(matches!(run(&s), Err(FitError::NonFinite { sample: 3, .. })));
+    assert!(matches!(
+        run(&s),
+        Err(FitError::NonFinite { sample: 3, .. })
+    ));
     let mut s = good.clone();
     s[5].pose[0][0] *= 1.01;
     let e = run(&s).unwrap_err();
@@ -29,7 +39,10 @@ fn malformed_samples_name_the_sample() {
     assert!(e.to_string().contains("sample 5"));
     let mut s = good.clone();
     s[9].pose[1][3] = f64::INFINITY;
-    assert!(matches!(run(&s), Err(FitError::NonFinite { sample: 9, .. })));
+    assert!(matches!(
+        run(&s),
+        Err(FitError::NonFinite { sample: 9, .. })
+    ));
     let mut s = good.clone();
     s[2].pose[3][0] = 0.5;
     assert!(matches!(run(&s), Err(FitError::NotRigid { sample: 2, .. })));
@@ -37,7 +50,14 @@ fn malformed_samples_name_the_sample() {
         r[0] = -1.0;
         r
     });
-    let e = fit(&joints, &home, &good, Some(&bad_r), Model::Joint, &mut |_, _| {});
+    let e = fit(
+        &joints,
+        &home,
+        &good,
+        Some(&bad_r),
+        Model::Joint,
+        &mut |_, _| {},
+    );
     assert!(matches!(e, Err(FitError::BadMeasurementCov(_))));
 }
 
@@ -47,7 +67,13 @@ fn too_few_samples() {
     let truth = full_truth(&joints, 1.0);
     let s = simulate::samples(&joints, &home, &truth, None, 60, 3);
     let e = fit(&joints, &home, &s, None, Model::Full, &mut |_, _| {}).unwrap_err();
-    assert_eq!(e, FitError::TooFewSamples { got: 60, needed: 126 });
+    assert_eq!(
+        e,
+        FitError::TooFewSamples {
+            got: 60,
+            needed: 126
+        }
+    );
     let e = fit(&joints, &home, &s[..5], None, Model::Joint, &mut |_, _| {}).unwrap_err();
     assert!(matches!(e, FitError::TooFewSamples { got: 5, .. }));
 }
@@ -85,7 +111,9 @@ fn wrong_model_is_flagged() {
     let s = simulate::samples(&joints, &home, &full_truth(&joints, 1.0), None, 1500, 12);
     let f = fit(&joints, &home, &s, None, Model::Joint, &mut |_, _| {}).unwrap();
     assert!(
-        f.warnings.iter().any(|w| w.contains("do not follow") || w.contains("residual floor")),
+        f.warnings
+            .iter()
+            .any(|w| w.contains("do not follow") || w.contains("residual floor")),
         "{:?}",
         f.warnings
     );

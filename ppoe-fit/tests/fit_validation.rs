@@ -16,24 +16,42 @@ fn check(o: &Outcome, label: &str) {
     assert!(o.fit.converged, "{label}: not converged");
     assert!(o.median < 0.08, "{label}: median {}", o.median);
     assert!(o.worst < 0.15, "{label}: worst {}", o.worst);
-    assert!(o.var_rel < 0.25 && o.var_z < 5.0, "{label}: σ² {} / {}", o.var_rel, o.var_z);
-    assert!(o.fit.goodness_of_fit.fits, "{label}: a correct model must fit");
+    assert!(
+        o.var_rel < 0.25 && o.var_z < 5.0,
+        "{label}: σ² {} / {}",
+        o.var_rel,
+        o.var_z
+    );
+    assert!(
+        o.fit.goodness_of_fit.fits,
+        "{label}: a correct model must fit"
+    );
     for j in &o.fit.joints {
         let c = nalgebra::Matrix6::from_fn(|r, k| j.cov[r][k]);
         assert_eq!(c, c.transpose(), "{label}: {} not symmetric", j.name);
         let min = c.symmetric_eigen().eigenvalues.min();
-        assert!(min >= -1e-12 * c.norm(), "{label}: {} eigenvalue {min}", j.name);
+        assert!(
+            min >= -1e-12 * c.norm(),
+            "{label}: {} eigenvalue {min}",
+            j.name
+        );
     }
 }
 
 #[test]
 fn joint_model_seed() {
-    check(&scenario(0, Model::Joint, 1.0, false, 2000, 1), "seed joint");
+    check(
+        &scenario(0, Model::Joint, 1.0, false, 2000, 1),
+        "seed joint",
+    );
 }
 
 #[test]
 fn joint_model_prismatic_with_tracker() {
-    check(&scenario(1, Model::Joint, 1.0, true, 2000, 2), "prismatic joint+tracker");
+    check(
+        &scenario(1, Model::Joint, 1.0, true, 2000, 2),
+        "prismatic joint+tracker",
+    );
 }
 
 /// Five joints without tracker noise: Σ of the joint model alone is singular, the residual

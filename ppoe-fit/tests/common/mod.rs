@@ -36,7 +36,11 @@ pub fn joint_truth(joints: &[Joint<f64>], scale: f64) -> Vec<f64> {
         .enumerate()
         .map(|(i, j)| {
             let base = 1.0 + (i * 7 % 4) as f64;
-            let unit = if j.kind == JointKind::Prismatic { 1e-6 } else { 1e-4 };
+            let unit = if j.kind == JointKind::Prismatic {
+                1e-6
+            } else {
+                1e-4
+            };
             base * unit * scale
         })
         .collect()
@@ -51,9 +55,17 @@ pub fn full_truth(joints: &[Joint<f64>], scale: f64) -> Vec<Mat6<f64>> {
         .map(|(i, j)| {
             let s2 = joint_truth(joints, scale)[i];
             let w = j.screw.rotation();
-            let pivot = if w.norm() > 0.0 { w.cross(&j.screw.translation()) } else { Vec3::zeros() };
+            let pivot = if w.norm() > 0.0 {
+                w.cross(&j.screw.translation())
+            } else {
+                Vec3::zeros()
+            };
             let a = 0.5 + 0.25 * (i % 3) as f64;
-            let bend = Mat3::from([[a, 0.1, 0.0], [0.1, 0.6, -0.05], [0.0, -0.05, 1.1 - 0.3 * a]]);
+            let bend = Mat3::from([
+                [a, 0.1, 0.0],
+                [0.1, 0.6, -0.05],
+                [0.0, -0.05, 1.1 - 0.3 * a],
+            ]);
             let small = Mat6::from_diagonal(&ppoe::Vec6::from([0.2, 0.1, 0.15, 0.3, 0.2, 0.25]));
             screw_noise(&j.screw, s2)
                 + bending_noise(&pivot, &bend.scale(1e-4 * scale))
@@ -64,12 +76,18 @@ pub fn full_truth(joints: &[Joint<f64>], scale: f64) -> Vec<Mat6<f64>> {
 
 /// The dense covariances of joint variances `s2`.
 pub fn joint_covs(joints: &[Joint<f64>], s2: &[f64]) -> Vec<Mat6<f64>> {
-    joints.iter().zip(s2).map(|(j, s)| screw_noise(&j.screw, *s)).collect()
+    joints
+        .iter()
+        .zip(s2)
+        .map(|(j, s)| screw_noise(&j.screw, *s))
+        .collect()
 }
 
 /// A tracker's noise: 0.5 mrad and 0.2 mm standard deviations (tip frame).
 pub fn tracker() -> Mat6<f64> {
-    Mat6::from_diagonal(&ppoe::Vec6::from([2.5e-7, 2.5e-7, 2.5e-7, 4e-8, 4e-8, 4e-8]))
+    Mat6::from_diagonal(&ppoe::Vec6::from([
+        2.5e-7, 2.5e-7, 2.5e-7, 4e-8, 4e-8, 4e-8,
+    ]))
 }
 
 fn frob(m: &Mat6<f64>) -> f64 {
@@ -85,7 +103,10 @@ pub fn heldout_errors(
     fitted: &[Mat6<f64>],
     count: usize,
 ) -> Vec<f64> {
-    let chain = ChainRef { joints, home: *home };
+    let chain = ChainRef {
+        joints,
+        home: *home,
+    };
     let mut e: Vec<f64> = simulate::configurations(joints, count, 0xbeef)
         .iter()
         .map(|th| {
@@ -134,8 +155,15 @@ pub fn scenario(
     let meas = with_tracker.then_some(&r);
     let samples = simulate::samples(&joints, &home, &truth, meas, count, seed);
     let r_arr = r.0;
-    let f = fit(&joints, &home, &samples, with_tracker.then_some(&r_arr), model, &mut |_, _| {})
-        .unwrap_or_else(|e| panic!("{file}: {e}"));
+    let f = fit(
+        &joints,
+        &home,
+        &samples,
+        with_tracker.then_some(&r_arr),
+        model,
+        &mut |_, _| {},
+    )
+    .unwrap_or_else(|e| panic!("{file}: {e}"));
     let e = heldout_errors(&joints, &home, &truth, &fitted_covs(&f), 200);
     let (mut var_rel, mut var_z) = (0.0f64, 0.0f64);
     if model == Model::Joint {
