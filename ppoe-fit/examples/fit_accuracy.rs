@@ -82,9 +82,13 @@ fn section() -> String {
         }
     }
     s.push_str(
-        "\nUp to joint noise of a few 10⁻² rad (σ² ≲ 2·10⁻³ rad²), the error is dominated \
-         by the finite sample; beyond, by the second-order model (the goodness-of-fit \
-         p-value then drops, which is how a user sees it).\n",
+        "\nThe joint model's fit degrades as the noise grows (the second-order model's \
+         bias): up to scale 16 (σ ≲ 0.08 rad, σ² ≲ 6·10⁻³ rad²) the predicted tool \
+         covariances stay within 6 % and the variances within 8 % of the truth; at scale \
+         64 (σ ≈ 0.16 rad) the variances are 19 % off (6 standard errors) while the \
+         goodness of fit at 2000 samples does not show it. Trust the joint model up to \
+         σ of a few 10⁻² rad per joint. The full model's errors here are dominated by \
+         its larger number of parameters (sampling), not by the noise level.\n",
     );
     s
 }
