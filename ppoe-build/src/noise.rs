@@ -187,3 +187,39 @@ pub fn generate(model: &NoiseModel, name: &str, scalar: Scalar, file_name: &str)
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn model(cov00: f64) -> String {
+        let mut c = [[0.0; 6]; 6];
+        c[0][0] = cov00;
+        c[2][2] = 1e-4;
+        serde_json::json!({"model": "joint", "joints": [
+            {"name": "a", "cov": c, "sigma2": 1e-4},
+            {"name": "b", "cov": c, "sigma2": 2e-4},
+        ]})
+        .to_string()
+    }
+
+    #[test]
+    fn parse_and_generate() {
+        let m = NoiseModel::parse(&model(1e-4)).unwrap();
+        assert_eq!(m.joints.len(), 2);
+        let src = generate(&m, "ARM", Scalar::Both, "noise.json");
+        assert!(src.contains("pub const ARM_NOISE: [ppoe::Mat6<f64>; 2] = ["));
+        assert!(src.contains("pub const ARM_NOISE_F32: [ppoe::Mat6<f32>; 2] = ["));
+        assert!(src.contains("pub const ARM_SIGMA2: [f64; 2] = [0.0001, 0.0002];"));
+        assert!(src.contains("pub const ARM_SIGMA2_F32: [f32; 2] = [0.0001, 0.0002];"));
+    }
+
+    #[test]
+    fn rejects_bad_covariances() {
+        let e = NoiseModel::parse(&model(-1.0)).unwrap_err();
+        assert!(e.to_string().contains("joint 0 ('a') cov"), "{e}");
+        let e = NoiseModel::parse("{\"joints\": [{\"name\": \"a\", \"cov\": [[1]]}]}").unwrap_err();
+        assert!(e.to_string().contains("6 rows of 6"), "{e}");
+        assert!(NoiseModel::parse("{}").is_err());
+    }
+}

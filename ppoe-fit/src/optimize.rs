@@ -65,9 +65,10 @@ fn scoring_step(f: &DMatrix<f64>, g: &DVector<f64>, mu: f64) -> DVector<f64> {
 fn trusted(param: &Param, theta: &DVector<f64>, step: DVector<f64>) -> DVector<f64> {
     if param.model == crate::param::Model::Joint {
         // Log-variances: a step is a factor per variance, at most e³ = 20 per step (a
-        // floor variance at its bound has a vanishing Fisher information, and its scoring
-        // step alone could overflow).
-        let mut cand = theta + step.map(|s| s.clamp(-3.0, 3.0));
+        // floor variance near its bound has a vanishing Fisher information, and its
+        // scoring step alone could overflow); scaled as a whole to keep its direction.
+        let scale = (3.0 / step.amax().max(1e-300)).min(1.0);
+        let mut cand = theta + step * scale;
         param.clamp(&mut cand);
         return cand;
     }
@@ -111,8 +112,15 @@ pub(crate) fn maximize(
             return Err(FitError::Numerical("Σ became singular".into()));
         };
         let j = param.jacobian(&theta, units);
-        let g = j.transpose() * &m.grad;
-        let f = j.transpose() * &m.fisher * &j;
+        let mut g = j.transpose() * &m.grad;
+        let mut f = j.transpose() * &m.fisher * &j;
+        // Parameters held at their bound leave the step (zero rows: dropped by the
+        // scaling in `scoring_step`).
+        for (k, _) in param.active(&theta, &g).iter().enumerate().filter(|a| *a.1) {
+            g[k] = 0.0;
+            f.row_mut(k).fill(0.0);
+            f.column_mut(k).fill(0.0);
+        }
         let mut moved = false;
         while mu < 1e3 {
             let step = scoring_step(&f, &g, mu);

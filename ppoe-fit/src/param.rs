@@ -149,6 +149,19 @@ impl Param {
         }
     }
 
+    /// Parameters at their lower bound whose gradient points below it (held fixed in a
+    /// step: the active set).
+    pub fn active(&self, th: &DVector<f64>, g: &DVector<f64>) -> Vec<bool> {
+        let mut out = vec![false; self.len()];
+        if let (Model::Joint, Some(floor)) = (self.model, self.floor_min) {
+            for (k, min) in floor.iter().enumerate() {
+                let i = self.n + k;
+                out[i] = th[i] <= min.ln() + 1e-9 && g[i] <= 0.0;
+            }
+        }
+        out
+    }
+
     /// Keeps the floor's log-variances at or above their bounds.
     pub fn clamp(&self, th: &mut DVector<f64>) {
         if let (Model::Joint, Some(floor)) = (self.model, self.floor_min) {
@@ -174,9 +187,11 @@ impl Param {
                 for i in 0..n {
                     th[i] = natural[i].max(1e-6 * top).ln();
                 }
+                // The floor starts at 1e-4 of the residuals' variance or above: at its
+                // bound (1e-12) Σ is nearly singular and scoring crawls.
                 if let Some(floor) = self.floor_min {
-                    th[n] = natural[n].max(floor[0]).ln();
-                    th[n + 1] = natural[n + 1].max(floor[1]).ln();
+                    th[n] = natural[n].max(1e8 * floor[0]).ln();
+                    th[n + 1] = natural[n + 1].max(1e8 * floor[1]).ln();
                 }
             }
             Model::Full => {
