@@ -140,10 +140,7 @@ pub fn frames_for_cases(
         .with_context(|| format!("cannot read {}", chain_args.urdf.display()))?;
     let urdf = ppoe_build::Urdf::parse_bytes(&bytes)?;
     let home_frames = frames::joint_home_frames(&urdf, &robot).map_err(anyhow::Error::msg)?;
-    let mut input = eval::read_input(input)?;
-    if let Some(p) = noise {
-        crate::fit::apply_noise(&mut input, &crate::fit::read_noise(p, &robot)?)?;
-    }
+    let input = crate::fit::read_cases(input, noise, &robot)?;
     if input.cases.is_empty() {
         bail!("the input has no cases");
     }

@@ -24,8 +24,7 @@ pub struct Input {
 pub struct Case {
     /// One value per joint (radians or metres).
     pub thetas: Vec<f64>,
-    /// One 6×6 covariance per joint, row-major (absent with `--noise`).
-    #[serde(default)]
+    /// One 6×6 covariance per joint, row-major.
     pub covs: Vec<[[f64; 6]; 6]>,
 }
 

@@ -226,16 +226,37 @@ pub fn read_noise(path: &Path, robot: &RobotChain) -> anyhow::Result<Vec<[[f64; 
     Ok(model.joints.iter().map(|j| j.cov).collect())
 }
 
-/// Gives every case of an `eval` input the noise model's covariances; a case that gives
-/// its own is an error (one source of covariances).
-pub fn apply_noise(input: &mut crate::eval::Input, covs: &[[[f64; 6]; 6]]) -> anyhow::Result<()> {
-    for (i, c) in input.cases.iter_mut().enumerate() {
-        if !c.covs.is_empty() {
-            bail!("case {i} gives \"covs\" and --noise is set: give the covariances one way");
+/// The input of `eval`/`render`/`mesh` (file, or stdin for `None`); with a noise model
+/// (`--noise`), every case gets its covariances before the input is parsed, and a case
+/// that gives its own is an error (one source of covariances).
+pub fn read_cases(
+    path: Option<&Path>,
+    noise: Option<&Path>,
+    robot: &RobotChain,
+) -> anyhow::Result<crate::eval::Input> {
+    let Some(noise) = noise else {
+        return crate::eval::read_input(path);
+    };
+    let covs = read_noise(noise, robot)?;
+    let text = match path {
+        Some(p) => std::fs::read_to_string(p)
+            .with_context(|| format!("cannot read the input file {}", p.display()))?,
+        None => std::io::read_to_string(std::io::stdin())
+            .context("cannot read the input from standard input")?,
+    };
+    let mut v: Value = serde_json::from_str(&text).context("malformed input JSON")?;
+    if let Some(cases) = v.get_mut("cases").and_then(Value::as_array_mut) {
+        for (i, c) in cases.iter_mut().enumerate() {
+            let Some(obj) = c.as_object_mut() else {
+                continue; // the typed parse reports it
+            };
+            if obj.contains_key("covs") {
+                bail!("case {i} gives \"covs\" and --noise is set: give the covariances one way");
+            }
+            obj.insert("covs".into(), json!(covs));
         }
-        c.covs = covs.to_vec();
     }
-    Ok(())
+    crate::eval::parse_input(&v.to_string()).context("malformed input JSON")
 }
 
 /// The seed robot's covariances from a noise model (`demo --noise`), checked against the

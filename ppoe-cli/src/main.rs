@@ -379,10 +379,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Eval(a) => {
             let robot = a.chain.config().chain()?;
-            let mut input = eval::read_input(a.input.as_deref())?;
-            if let Some(p) = &a.noise {
-                fit::apply_noise(&mut input, &fit::read_noise(p, &robot)?)?;
-            }
+            let input = fit::read_cases(a.input.as_deref(), a.noise.as_deref(), &robot)?;
             let out = eval::eval(&robot, &input, a.scalar, a.convention.core())?;
             let mut text = if a.pretty {
                 serde_json::to_string_pretty(&out)?

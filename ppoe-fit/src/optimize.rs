@@ -89,6 +89,28 @@ fn trusted(param: &Param, theta: &DVector<f64>, step: DVector<f64>) -> DVector<f
     }
 }
 
+/// The gradient and Fisher information in θ; parameters held at their bound leave the
+/// step (zero rows, dropped by the scaling in `scoring_step`).
+fn metric(
+    design: &Design,
+    param: &Param,
+    theta: &DVector<f64>,
+    stride: usize,
+) -> Result<(DVector<f64>, DMatrix<f64>), FitError> {
+    let Some(m) = design.moments(&param.coeffs(theta), stride) else {
+        return Err(FitError::Numerical("Σ became singular".into()));
+    };
+    let j = param.jacobian(theta, design.units.len());
+    let mut g = j.transpose() * &m.grad;
+    let mut f = j.transpose() * &m.fisher * &j;
+    for (k, _) in param.active(theta, &g).iter().enumerate().filter(|a| *a.1) {
+        g[k] = 0.0;
+        f.row_mut(k).fill(0.0);
+        f.column_mut(k).fill(0.0);
+    }
+    Ok((g, f))
+}
+
 /// Maximises the likelihood from `theta`; `progress(iteration, loglik)` after each step.
 pub(crate) fn maximize(
     design: &Design,
@@ -96,7 +118,6 @@ pub(crate) fn maximize(
     mut theta: DVector<f64>,
     progress: &mut dyn FnMut(usize, f64),
 ) -> Result<Outcome, FitError> {
-    let units = design.units.len();
     let stride = design.eta.len().div_ceil(FISHER_SAMPLES).max(1);
     let Some(mut loglik) = design.loglik(&param.coeffs(&theta)) else {
         return Err(FitError::Numerical(
@@ -108,19 +129,7 @@ pub(crate) fn maximize(
     let mut mu = 1e-6;
     while iterations < MAX_ITERATIONS && !converged {
         iterations += 1;
-        let Some(m) = design.moments(&param.coeffs(&theta), stride) else {
-            return Err(FitError::Numerical("Σ became singular".into()));
-        };
-        let j = param.jacobian(&theta, units);
-        let mut g = j.transpose() * &m.grad;
-        let mut f = j.transpose() * &m.fisher * &j;
-        // Parameters held at their bound leave the step (zero rows: dropped by the
-        // scaling in `scoring_step`).
-        for (k, _) in param.active(&theta, &g).iter().enumerate().filter(|a| *a.1) {
-            g[k] = 0.0;
-            f.row_mut(k).fill(0.0);
-            f.column_mut(k).fill(0.0);
-        }
+        let (g, f) = metric(design, param, &theta, stride)?;
         let mut moved = false;
         while mu < 1e3 {
             let step = scoring_step(&f, &g, mu);
@@ -143,12 +152,6 @@ pub(crate) fn maximize(
                 }
                 _ => mu *= 10.0,
             }
-        }
-        if std::env::var_os("PPOE_FIT_DEBUG").is_some() {
-            let g0 = 0.5 * g.dot(&scoring_step(&f, &g, 0.0));
-            eprintln!(
-                "it {iterations} loglik {loglik} mu {mu:e} moved {moved} undamped gain {g0:e}"
-            );
         }
         if converged {
             break;
@@ -225,9 +228,6 @@ pub(crate) fn em(
         let gain = l - l0;
         x = next;
         l0 = l;
-        if std::env::var_os("PPOE_FIT_DEBUG").is_some() {
-            eprintln!("em {it} {l} {gain:e} alpha {alpha}");
-        }
         if gain < EM_GAIN_TOL {
             return Ok((x, l0, it + 1, true));
         }
