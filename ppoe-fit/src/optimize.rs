@@ -27,6 +27,8 @@ pub(crate) struct Outcome {
     pub loglik: f64,
     pub iterations: usize,
     pub converged: bool,
+    /// No step improved and the last accepted one gained less than `GAIN_TOL`.
+    pub stalled_at_optimum: bool,
 }
 
 /// `(F + μ·λ_max)⁺·g` with F scaled to unit diagonal, eigenvalues below 1e-9 of the
@@ -127,6 +129,8 @@ pub(crate) fn maximize(
     let mut converged = false;
     let mut iterations = 0;
     let mut mu = 1e-6;
+    let mut last_gain = f64::INFINITY;
+    let mut stalled_at_optimum = false;
     while iterations < MAX_ITERATIONS && !converged {
         iterations += 1;
         let (g, f) = metric(design, param, &theta, stride)?;
@@ -144,6 +148,7 @@ pub(crate) fn maximize(
             match design.loglik(&param.coeffs(&cand)) {
                 Some(l) if l >= loglik => {
                     converged = l - loglik < GAIN_TOL && gain < GAIN_TOL && mu <= 1e-6;
+                    last_gain = l - loglik;
                     theta = cand;
                     loglik = l;
                     moved = true;
@@ -158,6 +163,9 @@ pub(crate) fn maximize(
         }
         progress(iterations, loglik);
         if !moved {
+            // No step improves: at the optimum within rounding if the last one gained
+            // next to nothing.
+            stalled_at_optimum = last_gain < GAIN_TOL;
             break;
         }
     }
@@ -166,6 +174,7 @@ pub(crate) fn maximize(
         loglik,
         iterations,
         converged,
+        stalled_at_optimum,
     })
 }
 

@@ -152,7 +152,9 @@ pub fn fit(
     let out = if model == Model::Full {
         full_rounds(&design, &param, theta0, progress)?
     } else {
-        maximize(&design, &param, theta0, progress)?
+        let mut out = maximize(&design, &param, theta0, progress)?;
+        out.converged |= out.stalled_at_optimum;
+        out
     };
     let x = param.coeffs(&out.theta);
     let m = design
