@@ -232,11 +232,13 @@ pub(crate) fn em(
             }
             alpha = 0.5 * (alpha - 1.0);
         }
-        let (_, l) = design.em_step(&next).ok_or_else(singular)?;
+        // The step from `next` gives its log-likelihood, and is the next cycle's first.
+        let (x1_next, l) = design.em_step(&next).ok_or_else(singular)?;
         progress(it + 1, l);
         let gain = l - l0;
         x = next;
         l0 = l;
+        first = Some(x1_next);
         if gain < EM_GAIN_TOL {
             return Ok((x, l0, it + 1, true));
         }
