@@ -69,6 +69,7 @@ pub mod interop;
 pub mod joint;
 pub mod linalg;
 mod ppoe;
+pub mod rank1;
 pub mod rotation_forms;
 pub mod scalar;
 pub mod se3;

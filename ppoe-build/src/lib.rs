@@ -159,11 +159,12 @@
 
 pub mod chain;
 pub mod codegen;
-mod dtd;
 pub mod codegen_c;
+mod dtd;
 pub mod error;
 pub mod literal;
 mod math;
+pub mod noise;
 pub mod urdf;
 
 pub use chain::{ChainJoint, RobotChain};
@@ -187,6 +188,7 @@ pub struct Config {
     joints: Option<Vec<String>>,
     scalar: Scalar,
     name: Option<String>,
+    noise: Option<PathBuf>,
 }
 
 impl Config {
@@ -200,6 +202,7 @@ impl Config {
             joints: None,
             scalar: Scalar::default(),
             name: None,
+            noise: None,
         }
     }
 
@@ -236,6 +239,13 @@ impl Config {
     /// `seed.urdf`). The f32 table is named `NAME_F32`.
     pub fn name(&mut self, name: impl Into<String>) -> &mut Self {
         self.name = Some(name.into());
+        self
+    }
+
+    /// A noise model written by `ppoe fit` to bake into the table as `NAME_NOISE` (and
+    /// `NAME_SIGMA2` for the joint model); see [`noise`].
+    pub fn noise(&mut self, fit_result: impl AsRef<Path>) -> &mut Self {
+        self.noise = Some(fit_result.as_ref().to_path_buf());
         self
     }
 
@@ -296,7 +306,15 @@ impl Config {
                 .unwrap_or_default(),
             sha256: codegen::sha256_hex(&bytes),
         };
-        codegen::generate(&chain, &name, self.scalar, &source).map_err(|e| e.in_file(&self.urdf))
+        let mut src = codegen::generate(&chain, &name, self.scalar, &source)
+            .map_err(|e| e.in_file(&self.urdf))?;
+        if let Some(path) = &self.noise {
+            let model = noise::NoiseModel::read(path)?;
+            model.check_against(&chain).map_err(|e| e.in_file(path))?;
+            let file = path.file_name().map(|s| s.to_string_lossy().into_owned());
+            src += &noise::generate(&model, &name, self.scalar, &file.unwrap_or_default());
+        }
+        Ok(src)
     }
 
     /// Generates the source and writes it to `$OUT_DIR/<file_name>` (rewriting the file only
@@ -314,6 +332,9 @@ impl Config {
             )
         })?;
         println!("cargo:rerun-if-changed={}", self.urdf.display());
+        if let Some(p) = &self.noise {
+            println!("cargo:rerun-if-changed={}", p.display());
+        }
         let path = Path::new(&out_dir).join(file_name);
         self.write_to(&path)?;
         Ok(path)

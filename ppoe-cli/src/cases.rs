@@ -74,12 +74,13 @@ pub enum Sink<'a> {
 fn prepare(
     chain_args: &ChainArgs,
     input: Option<&Path>,
+    noise: Option<&Path>,
     grid: usize,
     sink: &Sink<'_>,
 ) -> anyhow::Result<(load::Robot, eval::Input)> {
     load::check_one_stdin(&chain_args.urdf, input)?;
     let robot = load::robot(chain_args)?;
-    let cases = load::cases(input)?;
+    let cases = crate::fit::cases(input, noise, &robot.chain)?;
     if cases.cases.is_empty() {
         bail!("the input has no cases");
     }
@@ -106,12 +107,13 @@ fn prepare(
 pub fn run(
     chain_args: &ChainArgs,
     input: Option<&Path>,
+    noise: Option<&Path>,
     surface: &SurfaceArgs,
     sink: &Sink<'_>,
 ) -> anyhow::Result<()> {
     let (k, label) = level(surface)?;
     let grid = surface.grid as usize;
-    let (robot, cases) = prepare(chain_args, input, grid, sink)?;
+    let (robot, cases) = prepare(chain_args, input, noise, grid, sink)?;
     let home_frames = robot.chain.home_frames();
     let visuals = draw::robot_visuals(&robot, &chain_args.urdf)?;
     let (joints, home) = eval::core_joints::<f64>(&robot.chain);

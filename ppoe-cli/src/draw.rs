@@ -270,11 +270,19 @@ fn print_initial(initial: &State) {
 }
 
 /// `ppoe demo`: the seed example from the build-time table.
-pub fn demo(out: &Path, surface: &SurfaceArgs, n_frames: usize) -> anyhow::Result<()> {
+pub fn demo(
+    out: &Path,
+    surface: &SurfaceArgs,
+    n_frames: usize,
+    noise: Option<&Path>,
+) -> anyhow::Result<()> {
     let start = Instant::now();
     let (k, label) = level(surface)?;
     let chain = seed::SEED.as_ref();
-    let covs = seed::covs();
+    let covs = match noise {
+        Some(p) => crate::fit::seed_noise(p)?,
+        None => seed::covs(),
+    };
     let grid = surface.grid as usize;
     let visuals = seed::visuals()?;
 

@@ -9,6 +9,7 @@
 //! ppoe mesh   --urdf robot.urdf --base base_link --tip tool0 --input cases.json --format obj
 //! ppoe links  --urdf robot.urdf
 //! ppoe completions bash
+//! ppoe fit    --urdf robot.urdf --base base_link --tip tool0 --input data.json --model joint
 //! ```
 //!
 //! Errors are reported as one line on stderr (`error: ...`); exit status 2 for a usage
@@ -17,6 +18,7 @@
 mod cases;
 mod draw;
 mod eval;
+mod fit;
 mod links;
 mod load;
 mod mesh;
@@ -84,6 +86,17 @@ enum Command {
     /// file (the input of `ppoe eval`) as a mesh for Blender or MeshLab.
     #[command(after_help = EXIT_CODES_SHORT)]
     Mesh(MeshArgs),
+    /// Fit the per-joint noise covariances to joint values recorded with tool poses
+    /// measured by an external tracker (maximum likelihood of the PPOE's model).
+    ///
+    /// Input: {"samples":[{"thetas":[N numbers],"pose":[[4×4 row-major, tip in base]]}],
+    /// "measurement_cov": optional 6×6, the tracker's noise in the tip frame (rotation
+    /// first)}. Output (stdout, or --out written atomically): {"model","joints":[{"name",
+    /// "cov" (6×6, what `eval` takes as covs[i]),"cov_se","sigma2","sigma2_se"}],
+    /// "log_likelihood","samples","converged","identifiability","goodness_of_fit",
+    /// "warnings",...}; a summary (estimate ± standard error per joint) on stderr.
+    #[command(after_help = EXIT_CODES_SHORT)]
+    Fit(FitArgs),
     /// List the links and joints of a URDF as a tree (joint type, axis, limits), to find
     /// the names for --base, --tip and --joints.
     #[command(after_help = EXIT_CODES_SHORT)]
@@ -106,6 +119,30 @@ struct CompletionsArgs {
     /// The shell.
     #[arg(value_enum)]
     shell: clap_complete::Shell,
+}
+
+/// Which per-joint noise `fit` estimates.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum FitModel {
+    /// One variance per joint along its screw axis (encoder noise, backlash).
+    Joint,
+    /// Any 6×6 PSD covariance per joint (flexible links).
+    Full,
+}
+
+#[derive(Args, Debug)]
+struct FitArgs {
+    #[command(flatten)]
+    chain: ChainArgs,
+    /// The input JSON file (default or `-`: standard input).
+    #[arg(long, value_name = "FILE")]
+    input: Option<PathBuf>,
+    /// The noise model to fit.
+    #[arg(long, value_enum)]
+    model: FitModel,
+    /// Write the result to FILE (atomically) instead of standard output.
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
 }
 
 /// Which chain of which URDF.
@@ -136,6 +173,10 @@ struct TableArgs {
     /// The const's name (default: the URDF file's stem in upper case).
     #[arg(long)]
     name: Option<String>,
+    /// Also emit NAME_NOISE (and NAME_SIGMA2 for the joint model) from a noise model
+    /// written by `ppoe fit`.
+    #[arg(long, value_name = "FILE")]
+    noise: Option<PathBuf>,
     /// The language: rust (`pub const` items) or c (a C99 header of `static const` data
     /// for ppoe-ffi's C API, `ppoe.h`).
     #[arg(long, value_enum, default_value_t = TableLang::Rust)]
@@ -204,6 +245,10 @@ struct EvalArgs {
     /// Indent the output JSON.
     #[arg(long)]
     pretty: bool,
+    /// Take every case's covariances from a noise model written by `ppoe fit` (the cases
+    /// then give no "covs").
+    #[arg(long, value_name = "FILE")]
+    noise: Option<PathBuf>,
 }
 
 /// Which equiprobable surface of the tool position to draw.
@@ -253,6 +298,10 @@ struct DemoArgs {
     out: PathBuf,
     #[command(flatten)]
     surface: SurfaceArgs,
+    /// Use the joint covariances of a noise model written by `ppoe fit` for the seed
+    /// robot instead of the example's.
+    #[arg(long, value_name = "FILE")]
+    noise: Option<PathBuf>,
     /// The number of animation frames, 1 to 10000 (angle = 0.5·cos(2π(0.5 + step/N))).
     /// The animation's frames are held in memory: N·grid²·24 bytes must stay under 1 GiB
     /// (e.g. at most 278 frames at --grid 400), checked before any computation.
@@ -276,6 +325,9 @@ struct RenderArgs {
     /// The input JSON file (the input of `ppoe eval`; default or `-`: standard input).
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
+    /// Take every case's covariances from a noise model written by `ppoe fit`.
+    #[arg(long, value_name = "FILE")]
+    noise: Option<PathBuf>,
     /// png or svg: one picture per case (ppoe-render-<i>.<ext>), each written as it is
     /// computed; gif: one animation of all cases (ppoe-render.gif); html: one interactive
     /// view of all cases (ppoe-render.html). gif and html hold their frames in memory
@@ -302,6 +354,9 @@ struct MeshArgs {
     /// The input JSON file (the input of `ppoe eval`; default or `-`: standard input).
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
+    /// Take every case's covariances from a noise model written by `ppoe fit`.
+    #[arg(long, value_name = "FILE")]
+    noise: Option<PathBuf>,
     /// One file per case: ppoe-mesh-<i>.obj or ppoe-mesh-<i>.ply.
     #[arg(long, value_enum, default_value_t = MeshFormat::Obj)]
     format: MeshFormat,
@@ -415,6 +470,7 @@ fn report(message: &str) -> ExitCode {
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
+        Command::Fit(a) => fit_command(&a),
         Command::Table(a) => table(&a),
         Command::Eval(a) => eval_command(&a),
         Command::Demo(a) => demo(&a),
@@ -439,7 +495,7 @@ fn demo(a: &DemoArgs) -> anyhow::Result<()> {
     output::check_targets(&a.out, &names)?;
     let joints = seed::SEED.joints.len();
     cases::check_gif_memory(a.frames as usize, a.surface.grid as usize, joints)?;
-    draw::demo(&a.out, &a.surface, a.frames as usize)
+    draw::demo(&a.out, &a.surface, a.frames as usize, a.noise.as_deref())
 }
 
 /// `ppoe render`: one picture per case, or one animation.
@@ -469,7 +525,13 @@ fn render(a: &RenderArgs) -> anyhow::Result<()> {
             write: &write,
         },
     };
-    cases::run(&a.chain, a.input.as_deref(), &a.surface, &sink)
+    cases::run(
+        &a.chain,
+        a.input.as_deref(),
+        a.noise.as_deref(),
+        &a.surface,
+        &sink,
+    )
 }
 
 /// `ppoe mesh`: one mesh file per case.
@@ -488,7 +550,46 @@ fn mesh_command(a: &MeshArgs) -> anyhow::Result<()> {
         name: &name,
         write: &write,
     };
-    cases::run(&a.chain, a.input.as_deref(), &a.surface, &sink)
+    cases::run(
+        &a.chain,
+        a.input.as_deref(),
+        a.noise.as_deref(),
+        &a.surface,
+        &sink,
+    )
+}
+
+/// `ppoe fit`: the noise model fitted to the samples, on standard output or `--out`.
+fn fit_command(a: &FitArgs) -> anyhow::Result<()> {
+    load::check_one_stdin(&a.chain.urdf, a.input.as_deref())?;
+    if let Some(out) = &a.out {
+        let dir = out.parent().filter(|d| !d.as_os_str().is_empty());
+        let name = out.file_name().map(|n| n.to_string_lossy().into_owned());
+        let Some(name) = name else {
+            anyhow::bail!("--out {} has no file name", out.display());
+        };
+        output::check_targets(dir.unwrap_or(std::path::Path::new(".")), &[name])?;
+    }
+    let robot = load::robot(&a.chain)?;
+    let input = load::read(
+        a.input.as_deref().unwrap_or(std::path::Path::new("-")),
+        "input file",
+    )?;
+    let text = std::str::from_utf8(&input.bytes)
+        .map_err(|_| anyhow::anyhow!("{}: the input is not UTF-8", input.name))?;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let model = match a.model {
+        FitModel::Joint => ppoe_fit::Model::Joint,
+        FitModel::Full => ppoe_fit::Model::Full,
+    };
+    let result = fit::run(&robot.chain, text, model)
+        .map_err(|e| anyhow::anyhow!("{}: {e:#}", input.name))?;
+    let mut text = serde_json::to_string_pretty(&result)?;
+    text.push('\n');
+    match &a.out {
+        Some(p) => output::write_atomic(p, |w| w.write_all(text.as_bytes())),
+        None => output::print(text.as_bytes()),
+    }
 }
 
 /// `ppoe table`: the generated source on standard output.
@@ -517,6 +618,10 @@ fn table(a: &TableArgs) -> anyhow::Result<()> {
         TableLang::C => ppoe_build::codegen_c::generate(&robot.chain, &name, scalar, &source),
     }
     .map_err(|e| load::in_input(&robot.source.name, &e))?;
+    let src = match &a.noise {
+        Some(p) => src + &fit::noise_table(p, &robot.chain, &name, scalar, a.lang == TableLang::C)?,
+        None => src,
+    };
     output::print(src.as_bytes())
 }
 
@@ -524,7 +629,7 @@ fn table(a: &TableArgs) -> anyhow::Result<()> {
 fn eval_command(a: &EvalArgs) -> anyhow::Result<()> {
     load::check_one_stdin(&a.chain.urdf, a.input.as_deref())?;
     let robot = load::robot(&a.chain)?;
-    let input = load::cases(a.input.as_deref())?;
+    let input = fit::cases(a.input.as_deref(), a.noise.as_deref(), &robot.chain)?;
     let out = eval::eval(&robot.chain, &input, a.scalar, a.convention.core())?;
     let mut text = if a.pretty {
         serde_json::to_string_pretty(&out)?

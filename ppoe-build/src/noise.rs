@@ -1,0 +1,225 @@
+//! The noise model fitted by `ppoe fit`, read back and baked into a table: the per-joint
+//! covariances as a `const` next to the chain, so firmware calls the PPOE with the table's
+//! own noise model.
+//!
+//! The file is the JSON `ppoe fit` writes: `{"model": "joint"|"full", "joints": [{"name":
+//! ..., "cov": 6×6 row-major, "sigma2": ...}, ...], ...}`; other fields are ignored here.
+//! Every joint's `cov` must be finite, symmetric and positive semi-definite, and the joints
+//! must be the chain's, by name and in order.
+//!
+//! For a table `NAME` the generated items are `NAME_NOISE: [ppoe::Mat6<T>; N]` (what
+//! `Chain::ppoe` takes as `covs`) and, for the joint model, `NAME_SIGMA2: [T; N]` (the
+//! joint-value variances `Chain::ppoe_rank1` takes); with `_F32` suffixes for f32 tables.
+
+use crate::chain::RobotChain;
+use crate::codegen::Scalar;
+use crate::error::{Error, ErrorKind, Result};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// One joint's noise in a fitted model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NoiseJoint {
+    /// The joint's name.
+    pub name: String,
+    /// Its covariance: base-frame screw coordinates, rotation first, row-major.
+    pub cov: [[f64; 6]; 6],
+    /// The joint-value variance (joint model only).
+    pub sigma2: Option<f64>,
+}
+
+/// A noise model as `ppoe fit` writes it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NoiseModel {
+    /// `"joint"` or `"full"`.
+    pub model: String,
+    /// Per joint, base to tip.
+    pub joints: Vec<NoiseJoint>,
+}
+
+fn config(msg: String) -> Error {
+    Error::new(ErrorKind::Config, msg)
+}
+
+fn matrix6(v: &serde_json::Value, what: &str) -> Result<[[f64; 6]; 6]> {
+    let bad = || config(format!("{what}: expected 6 rows of 6 finite numbers"));
+    let rows = v.as_array().filter(|r| r.len() == 6).ok_or_else(bad)?;
+    let mut m = [[0.0; 6]; 6];
+    for (out, row) in m.iter_mut().zip(rows) {
+        let row = row.as_array().filter(|r| r.len() == 6).ok_or_else(bad)?;
+        for (o, x) in out.iter_mut().zip(row) {
+            *o = x.as_f64().filter(|x| x.is_finite()).ok_or_else(bad)?;
+        }
+    }
+    Ok(m)
+}
+
+impl NoiseModel {
+    /// Parses the JSON text of a fit result and checks every covariance.
+    ///
+    /// # Errors
+    /// [`ErrorKind::Config`] naming the joint for malformed JSON, a missing field, or a
+    /// covariance that is not finite, symmetric and PSD within tolerance.
+    pub fn parse(text: &str) -> Result<Self> {
+        let v: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| config(format!("noise model: {e}")))?;
+        let model = v["model"].as_str().unwrap_or("full").to_string();
+        let list = v["joints"]
+            .as_array()
+            .ok_or_else(|| config("noise model: no \"joints\" array".into()))?;
+        let mut joints = Vec::with_capacity(list.len());
+        for (i, j) in list.iter().enumerate() {
+            let name = j["name"]
+                .as_str()
+                .ok_or_else(|| config(format!("noise model: joint {i} has no \"name\"")))?;
+            let what = format!("noise model: joint {i} ('{name}') cov");
+            let cov = matrix6(&j["cov"], &what)?;
+            ppoe::uncertainty::check_covariance(&ppoe::Mat6::from(cov))
+                .map_err(|e| config(format!("{what}: {e}")))?;
+            joints.push(NoiseJoint {
+                name: name.to_string(),
+                cov,
+                sigma2: j["sigma2"].as_f64().filter(|s| s.is_finite() && *s >= 0.0),
+            });
+        }
+        Ok(Self { model, joints })
+    }
+
+    /// Reads and parses a fit result file.
+    ///
+    /// # Errors
+    /// [`ErrorKind::Io`] if the file cannot be read, else as [`NoiseModel::parse`].
+    pub fn read(path: impl AsRef<Path>) -> Result<Self> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            Error::new(ErrorKind::Io, format!("cannot read the noise model: {e}")).in_file(path)
+        })?;
+        Self::parse(&text).map_err(|e| e.in_file(path))
+    }
+
+    /// Checks that the model's joints are the chain's (same names, same order).
+    ///
+    /// # Errors
+    /// [`ErrorKind::Config`] naming the first mismatch.
+    pub fn check_against(&self, chain: &RobotChain) -> Result<()> {
+        let names: Vec<&str> = chain.joint_names();
+        let mine: Vec<&str> = self.joints.iter().map(|j| j.name.as_str()).collect();
+        if names != mine {
+            return Err(config(format!(
+                "the noise model's joints [{}] are not the chain's [{}]",
+                mine.join(", "),
+                names.join(", ")
+            )));
+        }
+        Ok(())
+    }
+
+    /// The per-joint covariances as core matrices.
+    pub fn covs(&self) -> Vec<ppoe::Mat6<f64>> {
+        self.joints
+            .iter()
+            .map(|j| ppoe::Mat6::from(j.cov))
+            .collect()
+    }
+}
+
+fn literal(x: f64, f32: bool) -> String {
+    let s = if f32 {
+        format!("{:?}", x as f32)
+    } else {
+        format!("{x:?}")
+    };
+    if s.contains('.') || s.contains('e') || s.contains("inf") || s.contains("NaN") {
+        s
+    } else {
+        format!("{s}.0")
+    }
+}
+
+/// The Rust source of the noise items for table `name` (appended after the chain).
+pub fn generate(model: &NoiseModel, name: &str, scalar: Scalar, file_name: &str) -> String {
+    let mut out = String::new();
+    let variants: &[(bool, &str)] = match scalar {
+        Scalar::F64 => &[(false, "")],
+        Scalar::F32 => &[(true, "_F32")],
+        Scalar::Both => &[(false, ""), (true, "_F32")],
+    };
+    let n = model.joints.len();
+    for &(f32, suffix) in variants {
+        let ty = if f32 { "f32" } else { "f64" };
+        let _ = write!(
+            out,
+            "\n/// Per-joint noise of `{name}{suffix}` fitted by `ppoe fit` (model `{}`), from \
+             `{file_name}`:\n/// `{name}_NOISE{suffix}[i]` is joint i's covariance (base-frame \
+             screw coordinates, rotation\n/// first), what `Chain::ppoe` takes as `covs`.\n\
+             #[allow(clippy::excessive_precision)]\npub const {name}_NOISE{suffix}: \
+             [ppoe::Mat6<{ty}>; {n}] = [\n",
+            model.model
+        );
+        for j in &model.joints {
+            let _ = writeln!(out, "    // {}\n    ppoe::Matrix([", j.name);
+            for row in &j.cov {
+                let items: Vec<String> = row.iter().map(|x| literal(*x, f32)).collect();
+                let _ = writeln!(out, "        [{}],", items.join(", "));
+            }
+            out.push_str("    ]),\n");
+        }
+        out.push_str("];\n");
+        let sig: Option<Vec<String>> = (model.model == "joint")
+            .then(|| {
+                model
+                    .joints
+                    .iter()
+                    .map(|j| j.sigma2.map(|s| literal(s, f32)))
+                    .collect()
+            })
+            .flatten();
+        if let Some(sig) = sig {
+            let _ = write!(
+                out,
+                "\n/// Joint-value variances (rad² or m²) of `{name}{suffix}` fitted by `ppoe fit`: \
+                 what\n/// `Chain::ppoe_rank1` takes (`{name}_NOISE{suffix}[i] = σᵢ²·SᵢSᵢᵀ`).\n\
+                 #[allow(clippy::excessive_precision)]\npub const {name}_SIGMA2{suffix}: \
+                 [{ty}; {n}] = [{}];\n",
+                sig.join(", ")
+            );
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn model(cov00: f64) -> String {
+        let mut c = [[0.0; 6]; 6];
+        c[0][0] = cov00;
+        c[2][2] = 1e-4;
+        serde_json::json!({"model": "joint", "joints": [
+            {"name": "a", "cov": c, "sigma2": 1e-4},
+            {"name": "b", "cov": c, "sigma2": 2e-4},
+        ]})
+        .to_string()
+    }
+
+    #[test]
+    fn parse_and_generate() {
+        let m = NoiseModel::parse(&model(1e-4)).unwrap();
+        assert_eq!(m.joints.len(), 2);
+        let src = generate(&m, "ARM", Scalar::Both, "noise.json");
+        assert!(src.contains("pub const ARM_NOISE: [ppoe::Mat6<f64>; 2] = ["));
+        assert!(src.contains("pub const ARM_NOISE_F32: [ppoe::Mat6<f32>; 2] = ["));
+        assert!(src.contains("pub const ARM_SIGMA2: [f64; 2] = [0.0001, 0.0002];"));
+        assert!(src.contains("pub const ARM_SIGMA2_F32: [f32; 2] = [0.0001, 0.0002];"));
+    }
+
+    #[test]
+    fn rejects_bad_covariances() {
+        let e = NoiseModel::parse(&model(-1.0)).unwrap_err();
+        assert!(e.to_string().contains("joint 0 ('a') cov"), "{e}");
+        let e = NoiseModel::parse("{\"joints\": [{\"name\": \"a\", \"cov\": [[1]]}]}").unwrap_err();
+        assert!(e.to_string().contains("6 rows of 6"), "{e}");
+        assert!(NoiseModel::parse("{}").is_err());
+    }
+}

@@ -1,0 +1,175 @@
+//! `ppoe fit` end to end: samples of the exact model on the seed robot (ppoe_fit::simulate)
+//! written as the input JSON, the fit written atomically with --out, then the result baked
+//! into a table (`ppoe table --noise`) and used by `ppoe eval --noise`; and the errors that
+//! name the sample.
+
+use ppoe::chain::{screw_noise, Joint};
+use ppoe::Transform;
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const BIN: &str = env!("CARGO_BIN_EXE_ppoe");
+
+fn urdf() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../test_data/urdf/seed.urdf")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("ppoe-fit-cli-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn seed_chain() -> (Vec<Joint<f64>>, Transform<f64>) {
+    let c = ppoe_build::Config::new(urdf())
+        .base("linkmount")
+        .tip("tcp")
+        .chain()
+        .unwrap();
+    let joints = c.to_core_joints().iter().map(Joint::from_f64).collect();
+    (joints, Transform::from_f64(&c.home_transform()))
+}
+
+fn ppoe(args: &[&str]) -> std::process::Output {
+    let u = urdf();
+    let mut all = vec![
+        args[0],
+        "--urdf",
+        u.to_str().unwrap(),
+        "--base",
+        "linkmount",
+        "--tip",
+        "tcp",
+    ];
+    all.extend(&args[1..]);
+    Command::new(BIN).args(&all).output().unwrap()
+}
+
+fn input(samples: &[ppoe_fit::Sample]) -> Value {
+    let s: Vec<Value> = samples
+        .iter()
+        .map(|s| json!({"thetas": s.thetas, "pose": s.pose}))
+        .collect();
+    json!({ "samples": s })
+}
+
+#[test]
+fn fit_table_eval() {
+    let dir = scratch("ok");
+    let (joints, home) = seed_chain();
+    let s2 = [1e-4, 2e-4, 3e-4, 1e-4, 2e-4, 3e-4];
+    let truth: Vec<_> = joints
+        .iter()
+        .zip(s2)
+        .map(|(j, s)| screw_noise(&j.screw, s))
+        .collect();
+    let samples = ppoe_fit::simulate::samples(&joints, &home, &truth, None, 1500, 21);
+    let data = dir.join("data.json");
+    std::fs::write(&data, input(&samples).to_string()).unwrap();
+    let out = dir.join("noise.json");
+    let r = ppoe(&[
+        "fit",
+        "--input",
+        data.to_str().unwrap(),
+        "--model",
+        "joint",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&r.stderr);
+    assert!(r.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("sigma² =") && stderr.contains("goodness of fit"),
+        "{stderr}"
+    );
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(v["model"], "joint");
+    assert_eq!(v["samples"], 1500);
+    assert_eq!(v["converged"], true);
+    for (j, s) in v["joints"].as_array().unwrap().iter().zip(s2) {
+        let (est, se) = (
+            j["sigma2"].as_f64().unwrap(),
+            j["sigma2_se"].as_f64().unwrap(),
+        );
+        assert!(
+            (est - s).abs() < 5.0 * se && (est - s).abs() < 0.25 * s,
+            "{j}"
+        );
+        assert_eq!(j["cov"].as_array().unwrap().len(), 6);
+    }
+    // Baked into the table.
+    let t = ppoe(&["table", "--noise", out.to_str().unwrap(), "--name", "ARM"]);
+    let src = String::from_utf8_lossy(&t.stdout);
+    assert!(t.status.success(), "{}", String::from_utf8_lossy(&t.stderr));
+    assert!(
+        src.contains("pub const ARM_NOISE: [ppoe::Mat6<f64>; 6]"),
+        "{src}"
+    );
+    assert!(src.contains("pub const ARM_SIGMA2: [f64; 6]"), "{src}");
+    // eval with the model's covariances equals eval with them written out.
+    let th = [0.2, -0.3, 0.4, 0.1, -0.5, 0.3];
+    let cases = dir.join("cases.json");
+    std::fs::write(&cases, json!({"cases": [{"thetas": th}]}).to_string()).unwrap();
+    let e = ppoe(&[
+        "eval",
+        "--input",
+        cases.to_str().unwrap(),
+        "--noise",
+        out.to_str().unwrap(),
+    ]);
+    assert!(e.status.success(), "{}", String::from_utf8_lossy(&e.stderr));
+    let covs: Vec<Value> = v["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j["cov"].clone())
+        .collect();
+    std::fs::write(
+        &cases,
+        json!({"cases": [{"thetas": th, "covs": covs}]}).to_string(),
+    )
+    .unwrap();
+    let e2 = ppoe(&["eval", "--input", cases.to_str().unwrap()]);
+    assert_eq!(e.stdout, e2.stdout);
+    // Both sources of covariances at once: an error.
+    let e3 = ppoe(&[
+        "eval",
+        "--input",
+        cases.to_str().unwrap(),
+        "--noise",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!e3.status.success());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn errors_name_the_sample() {
+    let dir = scratch("err");
+    let (joints, home) = seed_chain();
+    let truth: Vec<_> = joints.iter().map(|j| screw_noise(&j.screw, 1e-4)).collect();
+    let samples = ppoe_fit::simulate::samples(&joints, &home, &truth, None, 50, 2);
+    let data = dir.join("data.json");
+    let run = |v: Value| {
+        std::fs::write(&data, v.to_string()).unwrap();
+        let r = ppoe(&["fit", "--input", data.to_str().unwrap(), "--model", "joint"]);
+        assert!(!r.status.success());
+        String::from_utf8_lossy(&r.stderr).to_string()
+    };
+    let mut v = input(&samples);
+    v["samples"][4]["pose"][0][0] = json!(2.0);
+    assert!(run(v).contains("sample 4: the pose is not a rigid transform"));
+    let mut v = input(&samples);
+    v["samples"][6]["thetas"] = json!([0.1, 0.2]);
+    assert!(run(v).contains("sample 6: 2 joint values given"));
+    let mut v = input(&samples);
+    v["samples"][1]["pose"] = json!([[1, 0, 0, 0]]);
+    assert!(run(v).contains("sample 1: \"pose\" must be 4 rows of 4 numbers"));
+    let v = input(&samples[..5]);
+    assert!(run(v).contains("5 samples given, the model needs at least 10"));
+    let mut v = input(&samples);
+    v["measurement_cov"] = json!([[1.0]]);
+    assert!(run(v).contains("measurement_cov"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,485 @@
+//! The fit from samples to report: checks, method-of-moments start, identifiability,
+//! maximum likelihood, standard errors and goodness of fit.
+
+use crate::design::Design;
+use crate::error::FitError;
+use crate::optimize::maximize;
+use crate::param::{unit_matrix, Model, Param};
+use crate::report::{goodness_of_fit, information, GoodnessOfFit, Information};
+use crate::samples::{prepare, to_na, transports, Prepared, Sample};
+use nalgebra::{DVector, Matrix6, Vector6};
+use ppoe::chain::{Joint, JointKind};
+use ppoe::{Mat6, Transform};
+
+/// EM cycles before each round of Fisher scoring (full model), the most rounds, and the
+/// log-likelihood gain of a round below which the full model counts as converged: at
+/// covariances of lower rank the optimum is on the boundary of the PSD cone, where the
+/// gradient does not vanish, and 0.5 is a likelihood-ratio χ² of 1 over all the
+/// parameters, statistically nothing.
+const EM_CYCLES: usize = 15;
+const ROUNDS: usize = 12;
+const ROUND_TOL: f64 = 0.5;
+
+/// The full model: rounds of a few EM cycles (monotone and PSD: they bring a start whose
+/// Σ is nearly singular, or a scoring run stalled at covariances of lower rank, to where
+/// scoring makes progress) and Fisher scoring, until scoring converges.
+fn full_rounds(
+    design: &Design,
+    param: &Param,
+    mut theta: DVector<f64>,
+    progress: &mut dyn FnMut(usize, f64),
+) -> Result<crate::optimize::Outcome, FitError> {
+    let mut iterations = 0;
+    let mut last = f64::NEG_INFINITY;
+    for round in 0..ROUNDS {
+        let (x, _, cycles, _) =
+            crate::optimize::em(design, param.coeffs(&theta), EM_CYCLES, progress)?;
+        let mut out = maximize(design, param, param.theta_of(&x), progress)?;
+        iterations += cycles + out.iterations;
+        out.converged |= out.loglik - last < ROUND_TOL;
+        if out.converged || round + 1 == ROUNDS {
+            out.iterations = iterations;
+            return Ok(out);
+        }
+        last = out.loglik;
+        theta = out.theta;
+    }
+    unreachable!("the last round returns")
+}
+
+/// One joint's fitted noise.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointFit {
+    /// The joint's name.
+    pub name: String,
+    /// Cᵢ: 6×6 row-major, base-frame screw coordinates, rotation first (exactly what
+    /// `ppoe eval` takes as `covs[i]`); symmetric PSD by construction.
+    pub cov: [[f64; 6]; 6],
+    /// Standard error of each entry of `cov`; `None` where the data do not determine it.
+    pub cov_se: [[Option<f64>; 6]; 6],
+    /// Joint model: σᵢ², the variance of the joint value (rad² or m²).
+    pub sigma2: Option<f64>,
+    /// Joint model: the standard error of σᵢ².
+    pub sigma2_se: Option<f64>,
+}
+
+/// Which combinations of the parameters the data determine.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Identifiability {
+    /// Number of natural parameters (σᵢ² and the two floor variances, or the 21 entries
+    /// of each Cᵢ).
+    pub parameters: usize,
+    /// Rank of the Fisher information: how many combinations the data determine.
+    pub determined: usize,
+    /// The same rank for configurations spread over the joint limits: what the model
+    /// can determine at best (the rest is structural, e.g. a variance along joint i+1's
+    /// axis placed on joint i or i+1).
+    pub determinable: usize,
+    /// Parameters not determined by the data (names).
+    pub undetermined: Vec<String>,
+    /// Up to 12 undetermined combinations, each as its largest (name, weight) terms.
+    pub null_directions: Vec<Vec<(String, f64)>>,
+}
+
+/// The result of [`fit`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fit {
+    /// The model fitted.
+    pub model: Model,
+    /// Per joint, base to tip.
+    pub joints: Vec<JointFit>,
+    /// The maximised log-likelihood of the residuals.
+    pub log_likelihood: f64,
+    /// Number of samples.
+    pub samples: usize,
+    /// Whether Fisher scoring converged (predicted gain below 1e-6).
+    pub converged: bool,
+    /// Fisher-scoring iterations.
+    pub iterations: usize,
+    /// Joint model: the residual floor (τ_rot in rad², τ_trans in m², tip frame), not
+    /// part of the joints' noise.
+    pub residual_floor: Option<[f64; 2]>,
+    /// Which combinations are determined.
+    pub identifiability: Identifiability,
+    /// Residuals against the fitted model.
+    pub goodness_of_fit: GoodnessOfFit,
+    /// Things the user should know (not converged, few samples, clipped joint values,
+    /// a poor fit, a large residual floor).
+    pub warnings: Vec<String>,
+}
+
+/// Fits the per-joint noise of the chain (`joints`, `home`: screw axes in the base frame,
+/// home pose of the tip) to `samples`, with the tracker's noise `measurement_cov` (tip
+/// frame, rotation first; `None` = zero). `progress(iteration, log_likelihood)` is
+/// called after each Fisher-scoring step.
+///
+/// # Errors
+/// A [`FitError`] naming the sample for malformed samples (wrong length, NaN/∞, a pose
+/// that is not rigid), a bad measurement covariance or chain, fewer samples than the
+/// model needs ([`FitError::TooFewSamples`]), configurations that do not vary enough
+/// ([`FitError::NotIdentifiable`]), or a likelihood that cannot be evaluated.
+pub fn fit(
+    joints: &[Joint<f64>],
+    home: &Transform<f64>,
+    samples: &[Sample],
+    measurement_cov: Option<&[[f64; 6]; 6]>,
+    model: Model,
+    progress: &mut dyn FnMut(usize, f64),
+) -> Result<Fit, FitError> {
+    check_chain(joints, home)?;
+    let r = check_measurement(measurement_cov)?;
+    let n = joints.len();
+    let needed = 10.max(if model == Model::Joint { n + 2 } else { 21 * n });
+    if samples.len() < needed {
+        return Err(FitError::TooFewSamples {
+            got: samples.len(),
+            needed,
+        });
+    }
+    let data = prepare(joints, home, samples)?;
+    // The floor only where Σ could be singular: no positive definite R.
+    let with_floor = model == Model::Joint && r.cholesky().is_none();
+    let param = Param {
+        model,
+        n,
+        floor_min: with_floor.then(|| floor_min(&data)).transpose()?,
+    };
+    let design = Design::new(&data, model == Model::Joint, with_floor, r);
+    let theta0 = param.start(&method_of_moments(&design, &param));
+    let names = natural_names(joints, model, with_floor);
+    let (_, determinable) =
+        identifiability_check(&design, &param, &theta0, joints, home, r, &names)?;
+    let out = if model == Model::Full {
+        full_rounds(&design, &param, theta0, progress)?
+    } else {
+        let mut out = maximize(&design, &param, theta0, progress)?;
+        out.converged |= out.stalled_at_optimum;
+        out
+    };
+    let x = param.coeffs(&out.theta);
+    let m = design
+        .moments(&x, 1)
+        .ok_or_else(|| FitError::Numerical("Σ singular at the optimum".into()))?;
+    let jn = param.natural_jacobian(design.units.len());
+    let info = information(&(jn.transpose() * &m.fisher * &jn));
+    let gof = goodness_of_fit(&distances(&design, &x, &m.mahalanobis, with_floor));
+    let joints_out = joint_fits(joints, &data, &param, &x, &info);
+    let floor = with_floor.then(|| [x[n][(0, 0)], x[n][(3, 3)]]);
+    let mut fit = Fit {
+        model,
+        joints: joints_out,
+        log_likelihood: out.loglik,
+        samples: samples.len(),
+        converged: out.converged,
+        iterations: out.iterations,
+        residual_floor: floor,
+        identifiability: identifiability(&info, determinable, &names),
+        goodness_of_fit: gof,
+        warnings: Vec::new(),
+    };
+    fit.warnings = warnings(&fit, &design, &x, data.clipped, needed);
+    Ok(fit)
+}
+
+fn check_chain(joints: &[Joint<f64>], home: &Transform<f64>) -> Result<(), FitError> {
+    home.check()
+        .map_err(|e| FitError::BadChain(format!("home pose: {e}")))?;
+    if joints.is_empty() {
+        return Err(FitError::BadChain("the chain has no moving joint".into()));
+    }
+    for j in joints {
+        let (w, v) = (j.screw.rotation().norm(), j.screw.translation().norm());
+        let unit = match j.kind {
+            JointKind::Prismatic => w == 0.0 && (v - 1.0).abs() < 1e-9,
+            _ => (w - 1.0).abs() < 1e-9,
+        };
+        if !j.screw.is_finite() || !unit {
+            return Err(FitError::BadChain(format!(
+                "joint '{}': the screw axis is not finite or not a unit axis",
+                j.name
+            )));
+        }
+    }
+    Ok(())
+}
+
+fn check_measurement(r: Option<&[[f64; 6]; 6]>) -> Result<Matrix6<f64>, FitError> {
+    let Some(r) = r else {
+        return Ok(Matrix6::zeros());
+    };
+    ppoe::uncertainty::check_covariance(&Mat6::from(*r))
+        .map_err(|e| FitError::BadMeasurementCov(e.to_string()))?;
+    Ok(to_na(&Mat6::from(*r)))
+}
+
+/// The floor's lower bounds: 1e-12 of the residuals' mean squared rotation and
+/// translation components (and an error if the residuals are all zero).
+fn floor_min(data: &Prepared) -> Result<[f64; 2], FitError> {
+    let k = data.eta.len() as f64;
+    let rot = data
+        .eta
+        .iter()
+        .map(|e| e.fixed_rows::<3>(0).norm_squared())
+        .sum::<f64>();
+    let tra = data
+        .eta
+        .iter()
+        .map(|e| e.fixed_rows::<3>(3).norm_squared())
+        .sum::<f64>();
+    if rot + tra == 0.0 {
+        return Err(FitError::Numerical(
+            "every measured pose equals the forward kinematics exactly: no noise to fit".into(),
+        ));
+    }
+    let scale = (rot + tra) / (6.0 * k);
+    Ok([
+        (1e-12 * rot / (3.0 * k)).max(1e-16 * scale).max(1e-300),
+        (1e-12 * tra / (3.0 * k)).max(1e-16 * scale).max(1e-300),
+    ])
+}
+
+/// The natural parameters that best match Σ(θ) to ηηᵀ in least squares.
+fn method_of_moments(design: &Design, param: &Param) -> DVector<f64> {
+    let (f, b) = design.normal_equations();
+    let jn = param.natural_jacobian(design.units.len());
+    let (f, b) = (jn.transpose() * f * &jn, jn.transpose() * b);
+    let info = information(&f);
+    &info.cov * b
+}
+
+/// Names of the natural parameters, for reports.
+fn natural_names(joints: &[Joint<f64>], model: Model, floor: bool) -> Vec<String> {
+    let floor_names = [
+        "residual floor (rotation)".to_string(),
+        "residual floor (translation)".to_string(),
+    ];
+    match model {
+        Model::Joint => joints
+            .iter()
+            .map(|j| format!("sigma2 of joint '{}'", j.name))
+            .chain(floor_names.into_iter().filter(|_| floor))
+            .collect(),
+        Model::Full => joints
+            .iter()
+            .flat_map(|j| {
+                (0..6).flat_map(move |p| {
+                    (p..6).map(move |q| format!("cov[{p}][{q}] of joint '{}'", j.name))
+                })
+            })
+            .collect(),
+    }
+}
+
+/// The Fisher information of the data at the start, and the rank the model reaches on
+/// spread-out configurations; an error if the data determine less than that.
+fn identifiability_check(
+    design: &Design,
+    param: &Param,
+    theta0: &DVector<f64>,
+    joints: &[Joint<f64>],
+    home: &Transform<f64>,
+    r: Matrix6<f64>,
+    names: &[String],
+) -> Result<(Information, usize), FitError> {
+    let x0 = param.coeffs(theta0);
+    let jn = param.natural_jacobian(design.units.len());
+    let natural = |d: &Design| -> Result<Information, FitError> {
+        let m = d
+            .moments(&x0, 1)
+            .ok_or_else(|| FitError::Numerical("the starting Σ is singular".into()))?;
+        Ok(information(&(jn.transpose() * &m.fisher * &jn)))
+    };
+    let data = natural(design)?;
+    let configs = crate::simulate::configurations(joints, 300, 0x5eed);
+    let spread = Prepared {
+        eta: vec![Vector6::zeros(); configs.len()],
+        transports: configs
+            .iter()
+            .map(|t| transports(joints, home, t).0)
+            .collect(),
+        screws: joints
+            .iter()
+            .map(|j| Vector6::from_fn(|i, _| j.screw.0[i]))
+            .collect(),
+        clipped: 0,
+    };
+    let floor = param.floor_min.is_some();
+    let best = natural(&Design::new(&spread, param.model == Model::Joint, floor, r))?;
+    if data.rank < best.rank {
+        let missing: Vec<&str> = (0..names.len())
+            .filter(|&i| data.undetermined[i] && !best.undetermined[i])
+            .map(|i| names[i].as_str())
+            .collect();
+        return Err(FitError::NotIdentifiable(format!(
+            "the samples determine {} of the {} combinations the model can determine; \
+             undetermined: {}. Record configurations that move every joint over its range",
+            data.rank,
+            best.rank,
+            if missing.is_empty() {
+                "combinations of several parameters".to_string()
+            } else {
+                missing.join(", ")
+            }
+        )));
+    }
+    Ok((data, best.rank))
+}
+
+/// The per-joint results in base-frame screw coordinates.
+fn joint_fits(
+    joints: &[Joint<f64>],
+    data: &Prepared,
+    param: &Param,
+    x: &[Matrix6<f64>],
+    info: &Information,
+) -> Vec<JointFit> {
+    let se = |i: usize| (!info.undetermined[i]).then(|| info.cov[(i, i)].max(0.0).sqrt());
+    joints
+        .iter()
+        .enumerate()
+        .map(|(i, j)| {
+            let name = j.name.to_string();
+            if param.model == Model::Joint {
+                let s = data.screws[i];
+                let s2 = x[i][(0, 0)];
+                let c = s * s.transpose() * s2;
+                let e = se(i);
+                JointFit {
+                    name,
+                    cov: array6(|p, q| c[(p, q)]),
+                    cov_se: array6(|p, q| e.map(|e| e * (s[p] * s[q]).abs())),
+                    sigma2: Some(s2),
+                    sigma2_se: e,
+                }
+            } else {
+                let units = DVector::from_fn(21, |k, _| se(21 * i + k).unwrap_or(f64::NAN));
+                let se_m = unit_matrix(&units, 0);
+                JointFit {
+                    name,
+                    cov: array6(|p, q| x[i][(p, q)]),
+                    cov_se: array6(|p, q| Some(se_m[(p, q)]).filter(|v| v.is_finite())),
+                    sigma2: None,
+                    sigma2_se: None,
+                }
+            }
+        })
+        .collect()
+}
+
+fn array6<T>(f: impl Fn(usize, usize) -> T) -> [[T; 6]; 6] {
+    std::array::from_fn(|p| std::array::from_fn(|q| f(p, q)))
+}
+
+fn identifiability(info: &Information, determinable: usize, names: &[String]) -> Identifiability {
+    Identifiability {
+        parameters: names.len(),
+        determined: info.rank,
+        determinable,
+        undetermined: (0..names.len())
+            .filter(|&i| info.undetermined[i])
+            .map(|i| names[i].clone())
+            .collect(),
+        null_directions: info
+            .null_directions
+            .iter()
+            .map(|d| d.iter().map(|(i, w)| (names[*i].clone(), *w)).collect())
+            .collect(),
+    }
+}
+
+/// The warnings of a finished fit.
+fn warnings(
+    fit: &Fit,
+    design: &Design,
+    x: &[Matrix6<f64>],
+    clipped: usize,
+    needed: usize,
+) -> Vec<String> {
+    let mut w = Vec::new();
+    if !fit.converged {
+        w.push(format!(
+            "Fisher scoring did not converge in {} iterations",
+            fit.iterations
+        ));
+    }
+    if fit.samples < 10 * needed {
+        w.push(format!(
+            "{} samples for {} parameters: standard errors are rough; record at least {}",
+            fit.samples,
+            fit.identifiability.parameters,
+            10 * needed
+        ));
+    }
+    if clipped > 0 {
+        w.push(format!(
+            "{clipped} samples had a joint value outside its limits (clipped, as the PPOE clips)"
+        ));
+    }
+    let g = &fit.goodness_of_fit;
+    if !g.fits {
+        w.push(format!(
+            "the residuals do not follow the fitted model (Kolmogorov-Smirnov p = {:.1e}, mean \
+             Mahalanobis² {:.2} for 6 expected): the model does not describe this robot's noise \
+             (try the full model, check measurement_cov, or the noise is too large for the \
+             second-order model)",
+            g.p_value, g.mean_mahalanobis
+        ));
+    }
+    if let Some([fr, ft]) = fit.residual_floor {
+        let joints_only: Vec<Matrix6<f64>> = x
+            .iter()
+            .take(x.len() - 1)
+            .copied()
+            .chain([Matrix6::zeros()])
+            .collect();
+        let k = design.eta.len() as f64;
+        let (mut vr, mut vt) = (0.0, 0.0);
+        for i in 0..design.eta.len() {
+            let s = design.sigma(i, &joints_only) - design.r;
+            vr += (s[(0, 0)] + s[(1, 1)] + s[(2, 2)]) / (3.0 * k);
+            vt += (s[(3, 3)] + s[(4, 4)] + s[(5, 5)]) / (3.0 * k);
+        }
+        if fr > 0.05 * vr || ft > 0.05 * vt {
+            w.push(format!(
+                "a residual floor of {fr:.2e} rad² / {ft:.2e} m² remains beside mean predicted \
+                 variances of {vr:.2e} rad² / {vt:.2e} m²: joint-value noise alone does not \
+                 explain the scatter (try --model full, or give measurement_cov)"
+            ));
+        }
+    }
+    w
+}
+
+/// Each sample's squared Mahalanobis distance and its dimension: all six directions
+/// without a floor; with one only the eigen-directions of the joints' Σ (with
+/// R) whose variance is at least 10× the floor's there.
+fn distances(design: &Design, x: &[Matrix6<f64>], d6: &[f64], floor: bool) -> Vec<(f64, usize)> {
+    if !floor {
+        return d6.iter().map(|d| (*d, 6)).collect();
+    }
+    let floor = x[x.len() - 1];
+    let joints_only: Vec<Matrix6<f64>> = x
+        .iter()
+        .take(x.len() - 1)
+        .copied()
+        .chain([Matrix6::zeros()])
+        .collect();
+    design
+        .eta
+        .iter()
+        .enumerate()
+        .map(|(k, eta)| {
+            let e = design.sigma(k, &joints_only).symmetric_eigen();
+            let (mut d, mut r) = (0.0, 0);
+            for (i, lam) in e.eigenvalues.iter().enumerate() {
+                let v = e.eigenvectors.column(i);
+                let f = (v.transpose() * floor * v)[(0, 0)];
+                if *lam >= 10.0 * f && *lam > 0.0 {
+                    d += v.dot(eta).powi(2) / (lam + f);
+                    r += 1;
+                }
+            }
+            (d, r.max(1))
+        })
+        .collect()
+}
