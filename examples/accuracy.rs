@@ -19,11 +19,9 @@ use serde_json::Value;
 use std::time::Instant;
 
 // Golden-file loading, the chain loader, the error measures, the sampler and the sampled
-// models are the tests' own (tests/common): one implementation for the tests and this
-// report.
-#[path = "../tests/common/mod.rs"]
-mod common;
-use common::{
+// models are the tests' own (the ppoe-test-support crate): one implementation for the
+// tests and this report.
+use ppoe_test_support::{
     chain_from_golden, flat, frob_rel, golden, mat6, rel_err, seed_covs, vec_n, vecf, ChainModel,
     Gaussian6, TwoPose, PPOE_FILES,
 };
