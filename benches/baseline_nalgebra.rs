@@ -1,5 +1,7 @@
 //! The baseline: the same PPOE written with nalgebra's dense 4×4 and 6×6 matrices, the way
-//! a Rust user would port pytransform3d's example (MATH.md §5.2).
+//! a Rust user would port pytransform3d's example (`probabilistic_forward_kinematics`:
+//! per joint `T ← T·Dᵢ` and `C ← Ad(Dᵢ⁻¹)·C·Ad(Dᵢ⁻¹)ᵀ + Σᵢ` with dense matrices, then the
+//! home pose).
 
 use nalgebra::{Matrix3, Matrix4, Matrix6, RealField, Vector3, Vector6};
 

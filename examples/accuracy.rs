@@ -19,11 +19,9 @@ use serde_json::Value;
 use std::time::Instant;
 
 // Golden-file loading, the chain loader, the error measures, the sampler and the sampled
-// models are the tests' own (tests/common): one implementation for the tests and this
-// report.
-#[path = "../tests/common/mod.rs"]
-mod common;
-use common::{
+// models are the tests' own (the ppoe-test-support crate): one implementation for the
+// tests and this report.
+use ppoe_test_support::{
     chain_from_golden, flat, frob_rel, golden, mat6, rel_err, seed_covs, vec_n, vecf, ChainModel,
     Gaussian6, TwoPose, PPOE_FILES,
 };
@@ -215,7 +213,7 @@ fn cases(sigma2: f64) -> Vec<Case> {
             label: frame.into(),
             thetas: vecf(&c["thetas"]),
             covs: seed_covs(1.0),
-            noise: "seed (MATH.md §5.3)".into(),
+            noise: "seed (pytransform3d's PPOE example)".into(),
         });
     }
     for file in [
@@ -545,7 +543,7 @@ fn report(
     // Part 1.
     d.para("## 1. PPOE covariance against Monte Carlo, as the joint noise grows");
     d.para(
-        "Model (MATH.md §8): `T = D₁·Exp(ξ₁)·D₂·Exp(ξ₂)·…·Dₙ·Exp(ξₙ)·M`, `Dᵢ = Exp(Sᵢθᵢ)`, \
+        "Model (the one the PPOE linearises): `T = D₁·Exp(ξ₁)·D₂·Exp(ξ₂)·…·Dₙ·Exp(ξₙ)·M`, `Dᵢ = Exp(Sᵢθᵢ)`, \
          ξᵢ ~ N(0, scale·Σᵢ), sampled N times; η = Log(T̄⁻¹·T) (right perturbation, tip \
          frame) compared with `ChainView::ppoe(θ, covs, Convention::Right)` (**2nd** order) \
          and `ChainView::ppoe_fourth_order(θ, covs, Convention::Right)` (**4th**: the \
@@ -610,8 +608,7 @@ fn report(
         let [e2, e4, floor, _] = r.err.cells();
         d.para(&format!(
             "Reading: on the seed robot (frame 0) at 4× the seed's noise the 2nd-order PPOE is \
-             {e2} off and the 4th-order option {e4} (MC floor {floor}); MATH.md §8 measured 0.064 → \
-             0.004 with 2·10⁵ samples. Up to ×4, over all robots, the 4th-order error is at \
+             {e2} off and the 4th-order option {e4} (MC floor {floor}). Up to ×4, over all robots, the 4th-order error is at \
              most {:.1}× the MC floor (the 2nd order: up to {:.1}×). At ×16 (0.8 rad² per \
              noisy seed joint, {} rad² per joint elsewhere, σ ≈ {:.2} rad) the 4th-order error reaches {} and the 2nd-order \
              one {} on the worst robot: the perturbations reach angles where terms beyond the \
@@ -645,8 +642,7 @@ fn report(
         d.para(&format!(
             "Reading: at α = 1 the 2nd order is {e2} off and the 4th order {e4} (MC floor {floor}); \
              the 2nd-order error grows about linearly in α, the 4th-order one stays about an \
-             order of magnitude lower (MATH.md §8 reports 17 % → 1.4 % at α = 1 for its \
-             variant of this sweep).",
+             order of magnitude lower.",
         ));
     }
 

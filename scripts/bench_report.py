@@ -255,7 +255,7 @@ def render(d):
     p("")
     p("| implementation | f64 µs/call | f32 µs/call | ours is faster by (f64) |")
     p("|---|---:|---:|---:|")
-    p("| **ppoe** (`ChainRef::ppoe`, second order; joints with their constants, as ppoe-build's tables and `Joint::from_f64` give them) | **%s** | **%s** | — |" % (us(s64), us(s32)))
+    p("| **ppoe** (`ChainView::ppoe`, second order; joints with their constants, as ppoe-build's tables and `Joint::from_f64` give them) | **%s** | **%s** | — |" % (us(s64), us(s32)))
     p("| ppoe, joints from `Joint::new` (displacement constants derived in every call) | %s | %s | — |" % (us(c("ppoe_seed/ours_joint_new/f64")), us(c("ppoe_seed/ours_joint_new/f32"))))
     p("| ppoe, fourth order (`ppoe_fourth_order`) | %s | %s | — |" % (us(c("ppoe_seed/ours_4th_order/f64")), us(c("ppoe_seed/ours_4th_order/f32"))))
     p("| nalgebra dense 4×4/6×6 port (benches/baseline_nalgebra.rs, checked equal) | %s | %s | %s |" % (us(n64), us(n32), ratio(n64, s64)))
@@ -434,7 +434,8 @@ def render(d):
         e = fw["op_insns"].get("se3_exp", {})
         pi = fw["ppoe_insns"]
         p("- M4F f32 PPOE: %d instructions, ≈ %.0f per joint (one f32 `se3::exp` alone: %.0f). The M4F"
-          " has no SIMD for floats, so `Real::TRANSPORT_LANES` is 1 there: one structured transport at"
+          " has no SIMD for floats, so the PPOE's lane width (private, `lanes` in src/transport.rs) is 1"
+          " there: one structured transport at"
           " a time, the same operations as on the host." % (pi["f32"], pi["f32"] / 6, e.get("f32", 0)))
         for f, calls in (fw.get("direct_calls") or {}).items():
             p("  `%s` calls: %s." % (f, ", ".join("%s ×%d" % (k, v) for k, v in sorted(calls.items()))))
@@ -481,7 +482,7 @@ def render(d):
           " tolerances; `git log` has the before/after figures): accumulation in the tip frame from"
           " the tip backwards (no transport after the loop, lever arms from each joint to the tip),"
           " a shear-first structured transport accumulated into one triangle (no 6×6 temporaries),"
-          " independent transports packed into SIMD lanes (`Real::TRANSPORT_LANES`: 2 on SSE2/NEON,"
+          " independent transports packed into SIMD lanes (the private lane width, `lanes` in src/transport.rs: 2 on SSE2/NEON,"
           " for f32 too), the joints taken in groups of two whose congruences and covariances are"
           " gathered into lanes straight from registers (a queue in memory made the gathers wait on"
           " store forwarding), per-joint displacement constants computed once (`JointConstants`:"

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""Floating-point operation count of ppoe's PPOE (ChainRef::ppoe, Convention::Right).
+"""Floating-point operation count of ppoe's PPOE (ChainView::ppoe, Convention::Right).
 
-A hand count of the source as written (src/chain.rs `ppoe_lanes`,
-`JointConstants::displacement`, `sum_lanes`; src/se3.rs `Transform::compose`,
-`Congruence::of_inverse`, `transport_lower`, `sandwich_add`, `cross_component`), for joints
+A hand count of the source as written (src/transport.rs `ppoe_lanes`, `sum_lanes`,
+`Congruence::of_inverse`, `transport_lower`, `sandwich_add`, `cross_component`;
+src/joint.rs `JointConstants::displacement`; src/se3.rs `Transform::compose`), for joints
 with their displacement constants (ppoe-build's tables, `Joint::from_f64`,
 `Joint::prepared`), counting multiplies and adds/subtracts separately (negations,
 transposes, clipping compares, copies and the lane packing: 0), and division, square root

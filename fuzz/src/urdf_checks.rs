@@ -3,6 +3,7 @@
 use ppoe::chain::{ChainView, Convention, Joint};
 use ppoe::linalg::Mat6;
 use ppoe_build::codegen::{self, Scalar, Source};
+use ppoe_build::literal::{needs_escape, str_lit};
 use ppoe_build::Urdf;
 
 /// Maximum number of (base, tip) pairs tried per input.
@@ -10,21 +11,6 @@ pub const MAX_PAIRS: usize = 8;
 /// Inputs with more links than this are parsed but no chain is extracted (bounds the
 /// work per input: chain extraction is O(path²)).
 pub const MAX_LINKS: usize = 2000;
-
-/// `str_lit` of ppoe-build's codegen: how a name appears in the generated source.
-pub fn str_lit(s: &str) -> String {
-    let mut out = String::from("\"");
-    for c in s.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            ' '..='~' => out.push(c),
-            _ => out.push_str(&format!("\\u{{{:x}}}", c as u32)),
-        }
-    }
-    out.push('"');
-    out
-}
 
 /// The body of the `urdf` target.
 pub fn run(data: &[u8]) {
@@ -63,6 +49,11 @@ pub fn run(data: &[u8]) {
         // Codegen: f64 always works; the f32 table iff the geometry fits in f32.
         let text = codegen::generate(&chain, "FUZZ", Scalar::F64, &source)
             .unwrap_or_else(|e| panic!("codegen::generate (f64) failed on an Ok chain: {e}"));
+        // Names are escaped: nothing a reader cannot see (bidirectional controls, other
+        // format and control characters) reaches the source raw; lines end in '\n' only.
+        if let Some(c) = text.chars().find(|&c| c != '\n' && needs_escape(c)) {
+            panic!("generated text holds raw {:?}:\n{text}", c);
+        }
         for j in &chain.joints {
             let lit = str_lit(&j.name);
             assert!(text.contains(&lit), "generated text lacks joint name {lit}:\n{text}");

@@ -366,9 +366,13 @@ fn chain_joint(j: &UrdfJoint, l: Mat4, path: &[&UrdfJoint]) -> Result<ChainJoint
         return Err(Error::new(
             ErrorKind::ZeroAxis,
             format!(
-                "joint '{}' ({}): the axis is (0, 0, 0); a moving joint needs a direction",
+                "joint '{}' ({}): the axis ({:?}, {:?}, {:?}) is zero; a moving joint needs a \
+                 direction",
                 j.name,
-                j.joint_type.as_str()
+                j.joint_type.as_str(),
+                j.axis[0],
+                j.axis[1],
+                j.axis[2]
             ),
         )
         .at(j.axis_position.or(j.position)));

@@ -83,20 +83,48 @@ pub fn rotate(t: &Mat4, v: [f64; 3]) -> [f64; 3] {
     out
 }
 
-/// Euclidean norm `sqrt(x·x)`, summed left to right.
+/// Below this the plain sum of squares has lost bits to underflow (its squares are
+/// subnormal or flushed to zero): √(f64::MIN_POSITIVE / ε) ≈ 1.5·10⁻¹⁴⁶.
+const PLAIN_NORM_MIN: f64 = 1.5e-146;
+
+/// Euclidean norm: `sqrt(x·x)` summed left to right (numpy's, so that pytransform3d's
+/// results are matched bit for bit) wherever that is exact to rounding; for vectors whose
+/// squares underflow (‖v‖ < 1.5·10⁻¹⁴⁶) or overflow (‖v‖ > ~1.3·10¹⁵⁴) the vector is first
+/// divided by its largest |component|, so any finite non-zero vector has a finite, non-zero
+/// norm. 0 for the zero vector; not finite if a component is not.
 pub fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+    let plain = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if plain.is_finite() && plain >= PLAIN_NORM_MIN {
+        return plain;
+    }
+    let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return plain;
+    }
+    // Divided, not multiplied by 1/m (which overflows for a subnormal m): the largest
+    // component becomes ±1, so the scaled sum of squares is in [1, 3].
+    let s = [v[0] / m, v[1] / m, v[2] / m];
+    m * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt()
 }
 
 /// `v / ‖v‖`, or `v` unchanged if `‖v‖ = 0` (pytransform3d's `norm_vector`: a division, not
-/// a multiplication by the reciprocal).
+/// a multiplication by the reciprocal). A tiny or huge finite `v` gives its unit vector:
+/// where ‖v‖ itself under- or overflows, `v` is first divided by its largest |component|.
 pub fn normalized(v: [f64; 3]) -> [f64; 3] {
     let n = norm(v);
     if n == 0.0 {
-        v
-    } else {
-        [v[0] / n, v[1] / n, v[2] / n]
+        return v;
     }
+    if n.is_finite() && n >= PLAIN_NORM_MIN {
+        return [v[0] / n, v[1] / n, v[2] / n];
+    }
+    let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if !m.is_finite() {
+        return [v[0] / n, v[1] / n, v[2] / n];
+    }
+    let s = [v[0] / m, v[1] / m, v[2] / m];
+    let n = norm(s);
+    [s[0] / n, s[1] / n, s[2] / n]
 }
 
 /// `a × b` (numpy `cross`).
@@ -144,5 +172,24 @@ mod tests {
         assert_eq!(normalized([0.0, 0.0, 0.0]), [0.0, 0.0, 0.0]);
         assert_eq!(normalized([0.0, -3.0, 4.0]), [0.0, -0.6, 0.8]);
         assert_eq!(cross([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]), [0.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn norm_does_not_under_or_overflow() {
+        // Closed forms: ‖(3, 4, 0)·k‖ = 5k, exact in binary for these k up to one rounding.
+        for k in [1e-300, 1e-200, 1e150, 1e300, 1e-310] {
+            let n = norm([3.0 * k, 4.0 * k, 0.0]);
+            assert!(
+                (n - 5.0 * k).abs() <= 4.0 * f64::EPSILON * 5.0 * k,
+                "{k}: {n}"
+            );
+        }
+        assert_eq!(
+            norm([f64::MIN_POSITIVE / 4.0, 0.0, 0.0]),
+            f64::MIN_POSITIVE / 4.0
+        );
+        assert_eq!(norm([0.0, -0.0, 0.0]), 0.0);
+        assert_eq!(normalized([0.0, -1e300, 0.0]), [0.0, -1.0, 0.0]);
+        assert_eq!(normalized([0.0, 0.0, 5e-324]), [0.0, 0.0, 1.0]);
     }
 }

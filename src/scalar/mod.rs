@@ -28,7 +28,6 @@ mod sealed {
 /// |---|---|---|---|
 /// | [`EPS`](Real::EPS) | 2⁻⁵² | 2⁻²³ | machine epsilon |
 /// | [`SERIES`](Real::SERIES) | 2⁻¹³ | 2⁻⁶ | ≈ ε^¼: below it the 3-term Taylor series of the SO(3)/SE(3) coefficients is exact to ε |
-/// | [`NEAR_PI`](Real::NEAR_PI) | 10⁻⁶ | 5·10⁻³ | ≈ ε^⅓: balances the ε/δ error of the skew-part axis against the δ² term of the symmetric-part axis at angle π − δ |
 /// | [`TOL`](Real::TOL) | ≈1.5·10⁻⁸ | ≈3.5·10⁻⁴ | √ε: default relative tolerance of the input checks |
 pub trait Real:
     Float
@@ -60,9 +59,6 @@ pub trait Real:
     const EPS: Self;
     /// Angle below which exp/log/Jacobian coefficients use their Taylor series (≈ ε^¼).
     const SERIES: Self;
-    /// Distance from π below which the SO(3) logarithm takes the axis from the symmetric
-    /// part of R instead of the skew part (≈ ε^⅓; f64 uses pytransform3d's 10⁻⁶).
-    const NEAR_PI: Self;
     /// Default relative tolerance of the checked entry points (√ε): symmetry and
     /// positive semi-definiteness of covariances, orthonormality of rotations.
     const TOL: Self;
@@ -92,7 +88,6 @@ impl Real for f64 {
     const HALF: f64 = 0.5;
     const EPS: f64 = f64::EPSILON;
     const SERIES: f64 = 1.220_703_125e-4; // 2^-13 ≈ eps^(1/4) = 1.22e-4
-    const NEAR_PI: f64 = 1e-6; // eps^(1/3) = 6.1e-6; pytransform3d's value, same order
     const TOL: f64 = 1.490_116_119_384_765_6e-8; // sqrt(eps) = 2^-26
 
     #[inline]
@@ -126,7 +121,6 @@ impl Real for f32 {
     const HALF: f32 = 0.5;
     const EPS: f32 = f32::EPSILON;
     const SERIES: f32 = 0.015_625; // 2^-6 ≈ eps^(1/4) = 1.86e-2
-    const NEAR_PI: f32 = 5e-3; // eps^(1/3) = 4.9e-3
     const TOL: f32 = 3.452_669_8e-4; // sqrt(eps) = 2^-11.5
 
     #[inline]
@@ -173,8 +167,6 @@ mod tests {
         // Within a factor 2 of eps^(1/4), and the dropped Taylor term t^6/5040 is below eps.
         assert!(series <= eps.powf(0.25) * 2.0 && series >= eps.powf(0.25) / 2.0);
         assert!(series.powi(6) / 5040.0 < eps);
-        let near_pi = T::NEAR_PI.to_f64();
-        assert!(near_pi <= 2.0 * eps.cbrt() && near_pi >= eps.cbrt() / 10.0);
         let tol = T::TOL.to_f64();
         assert!((tol - eps.sqrt()).abs() / eps.sqrt() < 1e-6);
     }
