@@ -197,8 +197,11 @@ impl<T: Real> Transform<T> {
         self.translation.is_finite() && so3::is_rotation(&self.rotation, tol)
     }
 
-    /// Checks the transform with tolerance [`Real::TOL`]: [`Error::NonFinite`] or
-    /// [`Error::NotARotation`].
+    /// Checks the transform with tolerance [`Real::TOL`] (see [`Transform::is_valid`]).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NonFinite`] or [`Error::NotARotation`].
     pub fn check(&self) -> Result<(), Error> {
         if !self.rotation.is_finite() || !self.translation.is_finite() {
             Err(Error::NonFinite)
@@ -284,8 +287,14 @@ pub fn curly_hat<T: Real>(xi: &Vec6<T>) -> Mat6<T> {
 /// Corresponds to pytransform3d's `transform_from_exponential_coordinates` (the
 /// single-instance version). Method: one sin/cos and the coefficients of
 /// `I + aW + bW²` (rotation) and `I + bW + cW²` (left Jacobian, applied to v), with
-/// Taylor series below [`Real::SERIES`]. Accuracy: a few ε in R and ε·‖v‖ in p for any
-/// ω (8 ε·‖v‖ just above the series cut-off, `tests/robustness_numerics.rs`).
+/// Taylor series below [`Real::SERIES`].
+///
+/// # Accuracy
+///
+/// A few ε in R and ε·‖v‖ in p for any ω (8 ε·‖v‖ just above the series cut-off,
+/// `tests/robustness_numerics.rs`).
+///
+/// # Example
 ///
 /// ```
 /// use ppoe::{se3, Vec3, Vector};
@@ -333,7 +342,9 @@ pub fn exp<T: Real>(xi: &Vec6<T>) -> Transform<T> {
 ///   finite number, or a non-finite input), and NaN t², go to [`exp`]'s matrix form, so
 ///   the result is finite wherever [`exp`]'s translation is, and NaN only where it is.
 ///
-/// Accuracy: a few ε·‖v‖ absolute for every ω (the rounding of the cross products, whose
+/// # Accuracy
+///
+/// A few ε·‖v‖ absolute for every ω (the rounding of the cross products, whose
 /// weights relative to ‖v‖, `a·t = (1 − cos t)/t ≤ 0.73` and `b·t² = (t − sin t)/t ≤
 /// 1.22`, are bounded for all t). Measured against an independent f64 reference over t from 10⁻³⁰ to
 /// 10²⁰⁰ (f32: 10³⁰), including t² within a few ulps of 4 (`tests/ellipsoid_props.rs`):
@@ -424,8 +435,14 @@ fn exp_translation_general<T: Real>(w: &Vec3<T>, v: &Vec3<T>) -> Vec3<T> {
 /// Logarithm: exponential coordinates ξ = (ω, v), ‖ω‖ ∈ [0, π], with `Exp(ξ) = T`.
 ///
 /// Corresponds to pytransform3d's `exponential_coordinates_from_transform`. Method: ω
-/// from [`so3::log`], `v = J⁻¹(ω)·p`. Accuracy: a few ε (relative to ‖p‖ for v) away from
-/// π; ω to a few ε at any angle up to π (see [`so3::log_axis_angle`]).
+/// from [`so3::log`], `v = J⁻¹(ω)·p`.
+///
+/// # Accuracy
+///
+/// A few ε (relative to ‖p‖ for v) away from π; ω to a few ε at any angle up to π (see
+/// [`so3::log_axis_angle`]).
+///
+/// # Example
 ///
 /// ```
 /// use ppoe::{se3, Transform, Vector};

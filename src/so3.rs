@@ -123,9 +123,15 @@ pub(crate) fn i_plus_aw_bw2<T: Real>(w: &Vec3<T>, a: T, b: T) -> Mat3<T> {
 /// Exponential map `Exp(ω)`: the rotation by angle ‖ω‖ about ω (Rodrigues' formula
 /// `R = I + (sin θ/θ)·W + ((1 − cos θ)/θ²)·W²`, `W = [ω]×`).
 ///
-/// Corresponds to pytransform3d's `matrix_from_compact_axis_angle`. Accuracy: absolute
-/// error of a few ε in every element for any ω (no angle wrapping is needed; sin and cos
-/// are periodic). Non-finite input gives non-finite output.
+/// Corresponds to pytransform3d's `matrix_from_compact_axis_angle`. Non-finite input
+/// gives non-finite output.
+///
+/// # Accuracy
+///
+/// Absolute error of a few ε in every element for any ω (no angle wrapping is needed;
+/// sin and cos are periodic).
+///
+/// # Example
 ///
 /// ```
 /// use ppoe::{so3, Vec3};
@@ -152,12 +158,16 @@ pub fn exp<T: Real>(w: &Vec3<T>) -> Mat3<T> {
 /// diagonal element, normalised, overall sign fixed by r (at exactly π the largest
 /// component is positive, as in the reference). Angle 0 returns axis (1, 0, 0).
 ///
-/// Accuracy (axis, for elements of R accurate to a few ε): ≈ ε/sin θ up to π/2 (the
+/// Never NaN for finite input; the input need not be exactly orthonormal.
+///
+/// # Accuracy
+///
+/// Of the axis, for elements of R accurate to a few ε: ≈ ε/sin θ up to π/2 (the
 /// axis's own conditioning for small angles, ≤ √2·ε from π/4 on), a few ε beyond; within
 /// 16 ε of the exact axis for θ ∈ [π/2, π] and within 4 ε/sin θ below
 /// (`tests/robustness_numerics.rs`). pytransform3d, which switches only 10⁻⁶ from π, has
 /// an axis error ≈ ε/δ at π − δ outside that band (2·10⁻¹⁰ at its edge) and up to δ/2
-/// inside it. Never NaN for finite input; the input need not be exactly orthonormal.
+/// inside it.
 pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
     let m = rot.0;
     let r = Vector([m[2][1] - m[1][2], m[0][2] - m[2][0], m[1][0] - m[0][1]]);

@@ -28,8 +28,8 @@ use crate::se3::Transform;
 
 mod estimate;
 pub use estimate::{
-    estimate_gaussian_rotation, estimate_gaussian_transform, frechet_mean, pose_fusion,
-    Estimate, Fusion, IterationOptions, LieGroup,
+    estimate_gaussian_rotation, estimate_gaussian_transform, frechet_mean, pose_fusion, Estimate,
+    Fusion, IterationOptions, LieGroup,
 };
 
 /// The order of the covariance compounding in [`concat_globally`].
