@@ -23,7 +23,8 @@
 //! // A URDF yaw of 90°: the quaternion [cos 45°, 0, 0, sin 45°], and back to the angles.
 //! let r = matrix_from_rpy(&[0.0, 0.0, core::f64::consts::FRAC_PI_2])?;
 //! let h = core::f64::consts::FRAC_1_SQRT_2;
-//! approx::assert_abs_diff_eq!(quaternion_from_matrix(&r)?[..], [h, 0.0, 0.0, h][..], epsilon = 1e-15);
+//! let q = quaternion_from_matrix(&r)?;
+//! approx::assert_abs_diff_eq!(q[..], [h, 0.0, 0.0, h][..], epsilon = 1e-15);
 //! let rpy = rpy_from_matrix(&r)?;
 //! assert!((rpy[2] - core::f64::consts::FRAC_PI_2).abs() < 1e-15 && rpy[0].abs() < 1e-15);
 //! # Ok::<(), ppoe::Error>(())

@@ -123,9 +123,9 @@ fn fusion_start<T: Real>(means: &[Transform<T>], infos: &[Mat6<T>]) -> Transform
 /// Corresponds to pytransform3d's `pose_fusion(means, covs)`, which starts at the
 /// identity and always runs 20 iterations; here the loop stops at the rounding floor or
 /// at [`IterationOptions::step_tolerance`] (relative to the scale of the poses, see
-/// [`IterationOptions`]) and reports convergence. Where pytransform3d converges both reach the same minimum; from the
-/// identity it can stall or fail when the mean rotation is near π or the poses are far
-/// from the origin, which the start here avoids. The covariance is the inverse
+/// [`IterationOptions`]) and reports convergence. Where pytransform3d converges both
+/// reach the same minimum; from the identity it can stall or fail when the mean rotation
+/// is near π or the poses are far from the origin, which the start here avoids. The covariance is the inverse
 /// information matrix at the returned mean (pytransform3d evaluates it one update
 /// earlier; at convergence they agree).
 ///
