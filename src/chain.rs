@@ -3,6 +3,26 @@
 //! (the methods `ppoe`, `ppoe_checked` and `ppoe_fourth_order` of [`Chain`] and
 //! [`ChainView`], with [`Convention`] and [`UncertainPose`]). The joint model is in
 //! [`crate::joint`], re-exported here under its first paths (`ppoe::chain::Joint`, …).
+//!
+//! Frames: screw axes and the space Jacobian are in the base frame, the body Jacobian and
+//! the PPOE's default ([`Convention::Right`]) covariance in the tip frame; everything is
+//! rotation first. The crate-level example and [`Chain::ppoe`] show the PPOE.
+//!
+//! ```
+//! use ppoe::chain::{Chain, Joint, JointKind};
+//! use ppoe::Transform;
+//! const INF: f64 = f64::INFINITY;
+//! // A planar arm: joints about z through x = 0 and x = 0.5, tip at x = 1 at home.
+//! const ARM: Chain<f64, 2> = Chain::new("base", "tip", [
+//!     Joint::new("shoulder", JointKind::Revolute, [0., 0., 1., 0., 0., 0.], -INF, INF),
+//!     Joint::new("elbow", JointKind::Revolute, [0., 0., 1., 0., -0.5, 0.], -INF, INF),
+//! ], Transform::from_parts([[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]], [1., 0., 0.]));
+//! // The tip pose at θ = (0.3, −0.2): links of 0.5 at angles 0.3 and 0.1.
+//! let tip = ARM.forward_kinematics(&[0.3, -0.2]);
+//! let x = 0.5 * 0.3_f64.cos() + 0.5 * 0.1_f64.cos();
+//! assert!((tip.translation.0[0] - x).abs() < 1e-15);
+//! assert!(ARM.as_ref().check().is_ok()); // unit axes, valid home pose
+//! ```
 
 use crate::error::Error;
 use crate::linalg::{Matrix, Vec6};
@@ -186,6 +206,22 @@ impl<T: Real, const N: usize> Chain<T, N> {
     }
 
     /// Rigid forward kinematics `Exp(S₁θ₁)·…·Exp(Sₙθₙ)·M` (tip to base) at the clipped θ.
+    ///
+    /// ```
+    /// use ppoe::chain::{Chain, Joint, JointKind};
+    /// use ppoe::Transform;
+    /// const INF: f64 = f64::INFINITY;
+    /// // A planar arm: joints about z through x = 0 and x = 0.5, tip at x = 1 at home.
+    /// const ARM: Chain<f64, 2> = Chain::new("base", "tip", [
+    ///     Joint::new("shoulder", JointKind::Revolute, [0., 0., 1., 0., 0., 0.], -INF, INF),
+    ///     Joint::new("elbow", JointKind::Revolute, [0., 0., 1., 0., -0.5, 0.], -INF, INF),
+    /// ], Transform::from_parts([[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]], [1., 0., 0.]));
+    /// let t = ARM.forward_kinematics(&[0.3, -0.2]);
+    /// let (x, y) = (0.5 * (0.3_f64.cos() + 0.1_f64.cos()), 0.5 * (0.3_f64.sin() + 0.1_f64.sin()));
+    /// approx::assert_abs_diff_eq!(t.translation, ppoe::Vec3::new(x, y, 0.0), epsilon = 1e-15);
+    /// assert!((t.rotation.0[1][0] - 0.1_f64.sin()).abs() < 1e-15); // tip yaw 0.3 − 0.2
+    /// assert_eq!(ARM.forward_kinematics(&[0.0, 0.0]), ARM.home); // θ = 0: the home pose
+    /// ```
     pub fn forward_kinematics(&self, thetas: &[T; N]) -> Transform<T> {
         self.as_ref()
             .forward_kinematics(thetas)
@@ -194,6 +230,24 @@ impl<T: Real, const N: usize> Chain<T, N> {
 
     /// Space Jacobian at the clipped θ: 6×N, column i = `Ad(D₁…Dᵢ₋₁)·Sᵢ` (base frame,
     /// rotation first).
+    ///
+    /// ```
+    /// use ppoe::chain::{Chain, Joint, JointKind};
+    /// use ppoe::Transform;
+    /// const INF: f64 = f64::INFINITY;
+    /// // A planar arm: joints about z through x = 0 and x = 0.5, tip at x = 1 at home.
+    /// const ARM: Chain<f64, 2> = Chain::new("base", "tip", [
+    ///     Joint::new("shoulder", JointKind::Revolute, [0., 0., 1., 0., 0., 0.], -INF, INF),
+    ///     Joint::new("elbow", JointKind::Revolute, [0., 0., 1., 0., -0.5, 0.], -INF, INF),
+    /// ], Transform::from_parts([[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]], [1., 0., 0.]));
+    /// let js = ARM.space_jacobian(&[0.3, -0.2]);
+    /// // Column 1 is S₁; column 2 is the elbow's axis where the shoulder moved it: about z
+    /// // through q = 0.5·(cos 0.3, sin 0.3, 0), i.e. (0, 0, 1, q_y, −q_x, 0).
+    /// let q = [0.5 * 0.3_f64.cos(), 0.5 * 0.3_f64.sin()];
+    /// assert_eq!(js.column(0), ARM.joints[0].screw);
+    /// let expected = ppoe::Vector([0.0, 0.0, 1.0, q[1], -q[0], 0.0]);
+    /// approx::assert_abs_diff_eq!(js.column(1), expected, epsilon = 1e-15);
+    /// ```
     pub fn space_jacobian(&self, thetas: &[T; N]) -> Matrix<T, 6, N> {
         let mut cols = [Vec6::zeros(); N];
         let _ = self.as_ref().space_jacobian(thetas, &mut cols);
@@ -202,6 +256,22 @@ impl<T: Real, const N: usize> Chain<T, N> {
 
     /// Body Jacobian at the clipped θ: 6×N, column i = `Ad(T⁻¹)·Jₛ,ᵢ` (tip frame,
     /// rotation first).
+    ///
+    /// ```
+    /// use ppoe::chain::{Chain, Joint, JointKind};
+    /// use ppoe::Transform;
+    /// const INF: f64 = f64::INFINITY;
+    /// // A planar arm: joints about z through x = 0 and x = 0.5, tip at x = 1 at home.
+    /// const ARM: Chain<f64, 2> = Chain::new("base", "tip", [
+    ///     Joint::new("shoulder", JointKind::Revolute, [0., 0., 1., 0., 0., 0.], -INF, INF),
+    ///     Joint::new("elbow", JointKind::Revolute, [0., 0., 1., 0., -0.5, 0.], -INF, INF),
+    /// ], Transform::from_parts([[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]], [1., 0., 0.]));
+    /// let jb = ARM.body_jacobian(&[0.3, -0.2]);
+    /// // Seen from the tip, the elbow is 0.5 behind it on the tip's x axis: turning the
+    /// // elbow moves the tip along its own y axis at 0.5 m/rad.
+    /// let expected = ppoe::Vector([0.0, 0.0, 1.0, 0.0, 0.5, 0.0]);
+    /// approx::assert_abs_diff_eq!(jb.column(1), expected, epsilon = 1e-15);
+    /// ```
     pub fn body_jacobian(&self, thetas: &[T; N]) -> Matrix<T, 6, N> {
         let mut cols = [Vec6::zeros(); N];
         let _ = self.as_ref().body_jacobian(thetas, &mut cols);

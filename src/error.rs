@@ -1,4 +1,11 @@
 //! The error type of the checked entry points.
+//!
+//! ```
+//! use ppoe::{Error, Transform};
+//! // A scaled "rotation" is rejected with a reason, not used.
+//! let t = Transform::from_parts([[2.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], [0.0; 3]);
+//! assert_eq!(t.check(), Err(Error::NotARotation));
+//! ```
 
 use core::fmt;
 

@@ -1,6 +1,16 @@
 //! Joints: the joint model of a chain (kind, screw axis, limits), its displacement
 //! `Exp(S·θ)` from precomputed constants, and joint noise models (covariances of the
 //! joint's right perturbation, base-frame screw coordinates, rotation first).
+//!
+//! ```
+//! use ppoe::joint::{Joint, JointKind};
+//! use ppoe::Vec3;
+//! // Revolute about z through (1, 0, 0): screw axis (ŝ, q × ŝ) = (0, 0, 1, 0, −1, 0).
+//! let j = Joint::new("j", JointKind::Revolute, [0., 0., 1., 0., -1., 0.], -4.0, 4.0);
+//! // A half turn carries the base origin around the axis to (2, 0, 0).
+//! let d = j.displacement(core::f64::consts::PI);
+//! approx::assert_abs_diff_eq!(d.translation, Vec3::new(2.0, 0.0, 0.0), epsilon = 1e-15);
+//! ```
 
 use crate::linalg::{Mat3, Mat6, Matrix, Vec3, Vec6, Vector};
 use crate::scalar::Real;
@@ -191,6 +201,20 @@ impl<T: Real> JointConstants<T> {
 
 impl<T: Real> Joint<T> {
     /// A joint; usable in `const` items (this is what `ppoe-build` emits).
+    ///
+    /// `screw` is S = (ω, v) in the base frame at the home pose, rotation first: `(ŝ, q × ŝ)`
+    /// for a revolute or continuous joint about the unit axis ŝ through q, `(0, ŝ)` for a
+    /// prismatic one ([`se3::screw_axis`] computes it). Nothing is checked here
+    /// ([`ChainView::check`](crate::chain::ChainView::check) does).
+    ///
+    /// ```
+    /// use ppoe::joint::{Joint, JointKind};
+    /// // A prismatic joint along y with a 0.3 m stroke.
+    /// const SLIDE: Joint<f64> =
+    ///     Joint::new("slide", JointKind::Prismatic, [0., 0., 0., 0., 1., 0.], 0.0, 0.3);
+    /// assert_eq!(SLIDE.clip(0.5, false), 0.3); // values are clipped to the limits
+    /// assert_eq!(SLIDE.displacement(0.2).translation.0, [0.0, 0.2, 0.0]);
+    /// ```
     #[inline]
     pub const fn new(
         name: &'static str,
@@ -245,6 +269,15 @@ impl<T: Real> Joint<T> {
     ///
     /// Non-finite constants (from a screw so large or small that v/‖ω‖ overflows) are not
     /// kept: such a joint stays on the per-call path, whose result is the same.
+    ///
+    /// ```
+    /// use ppoe::joint::{Joint, JointKind};
+    /// let j = Joint::new("j", JointKind::Revolute, [0., 1., 0., 0., 0., 0.5], -3.0, 3.0);
+    /// assert!(j.constants().is_none()); // `new` is `const`: it cannot compute them
+    /// let p = j.prepared();
+    /// assert_eq!(p.constants().map(|k| k.axis), Some([0.0, 1.0, 0.0]));
+    /// assert_eq!(p.displacement(0.4), j.displacement(0.4)); // the same result, faster
+    /// ```
     #[must_use]
     pub fn prepared(mut self) -> Self {
         self.constants = JointConstants::of(&self.screw).filter(JointConstants::is_finite);
@@ -331,6 +364,15 @@ impl<T: Real> Joint<T> {
 /// Joint-value noise as a joint covariance: `σ²·S·Sᵀ` for screw axis S (base frame,
 /// rotation first). Exact for the model: `Exp(S(θ+δ)) = Exp(Sθ)·Exp(Sδ)`, so δ ~ N(0, σ²)
 /// is the right perturbation ξ = S·δ of the joint's displacement.
+///
+/// ```
+/// use ppoe::{joint::screw_noise, Vector};
+/// // σ = 0.01 rad on a joint about z through (1, 0, 0): S = (0, 0, 1, 0, −1, 0).
+/// let c = screw_noise(&Vector([0., 0., 1., 0., -1., 0.]), 1e-4);
+/// assert_eq!(c.0[2][2], 1e-4); // yaw variance σ²
+/// assert_eq!(c.0[4][4], 1e-4); // the origin, 1 m from the axis, moves along −y ...
+/// assert_eq!(c.0[2][4], -1e-4); // ... fully correlated with the yaw
+/// ```
 #[inline]
 pub fn screw_noise<T: Real>(screw: &Vec6<T>, sigma2: T) -> Mat6<T> {
     screw.outer(screw).scale(sigma2)
@@ -340,6 +382,16 @@ pub fn screw_noise<T: Real>(screw: &Vec6<T>, sigma2: T) -> Mat6<T> {
 /// axes) about the point `pivot` (base frame), i.e. ξ = (ω, pivot × ω) and
 /// `Σ = G·cov_omega·Gᵀ`, `G = [I; [pivot]×]`. The seed example's covariances are this
 /// with `pivot = 0` and `cov_omega = 0.05·e eᵀ` for a base axis e.
+///
+/// ```
+/// use ppoe::{joint::bending_noise, Mat3, Vec3};
+/// // Bending about the base x axis (0.05 rad²) at a pivot 1 m up the z axis: a rotation
+/// // ω about x there is the twist (ω, pivot × ω) = (ω, 0, 0, 0, ω, 0).
+/// let cov_omega = Mat3::from_rows([[0.05, 0.0, 0.0], [0.0; 3], [0.0; 3]]);
+/// let c = bending_noise(&Vec3::new(0.0, 0.0, 1.0), &cov_omega);
+/// assert_eq!((c.0[0][0], c.0[4][4], c.0[0][4]), (0.05, 0.05, 0.05));
+/// assert_eq!(c.0[3][3] + c.0[5][5], 0.0);
+/// ```
 #[inline]
 pub fn bending_noise<T: Real>(pivot: &Vec3<T>, cov_omega: &Mat3<T>) -> Mat6<T> {
     let c = *cov_omega;

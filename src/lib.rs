@@ -6,7 +6,7 @@
 //! pytransform3d's `uncertainty` module it is built on.
 //!
 //! * `#![no_std]`, no allocator, fixed-size types, no `unsafe`. No function is meant to
-//!   panic, but only the PPOE path (`ChainRef::ppoe`) is *proven* panic-free, by a
+//!   panic, but only the PPOE path (`ChainView::ppoe`) is *proven* panic-free, by a
 //!   link-time check on Cortex-M4F (`scripts/firmware.sh`); the other functions are
 //!   fuzzed (`FUZZING.md`), which finds panics but proves their absence for none.
 //!   Checked functions return an [`Error`] for bad input and for results that are not

@@ -207,7 +207,14 @@ impl<T: Real, const N: usize> Chain<T, N> {
     /// let covs = [ppoe::chain::screw_noise(&ARM.joints[0].screw, 1e-4),
     ///             ppoe::chain::screw_noise(&ARM.joints[1].screw, 1e-4)];
     /// let tip = ARM.ppoe(&[0.3, -0.2], &covs, Convention::Right);
-    /// assert!(tip.cov.0[2][2] > 1e-4); // yaw variance of the tip: both joints add up
+    /// // Right convention: η in the tip frame, Σ = σ²·J_b·J_bᵀ for joint-value noise. The
+    /// // yaw variances of both joints add up; along the tip's y axis the elbow (0.5 m
+    /// // away) and the shoulder (0.5 + 0.5·cos 0.2 m along the link direction) add theirs.
+    /// assert!((tip.cov.0[2][2] - 2e-4).abs() < 1e-18);
+    /// let var_y = 1e-4 * (0.25 + (0.5 + 0.5 * 0.2_f64.cos()).powi(2));
+    /// assert!((tip.cov.0[4][4] - var_y).abs() < 1e-18);
+    /// let fk = ARM.forward_kinematics(&[0.3, -0.2]);
+    /// approx::assert_abs_diff_eq!(tip.pose, fk, epsilon = 1e-15); // the mean: rigid FK
     /// ```
     pub fn ppoe(
         &self,
@@ -225,6 +232,29 @@ impl<T: Real, const N: usize> Chain<T, N> {
     /// # Errors
     ///
     /// As [`ChainView::ppoe_checked`] (the lengths always match).
+    ///
+    /// # Example
+    ///
+    /// ```
+    /// # use ppoe::chain::{screw_noise, Chain, Convention, Joint, JointKind};
+    /// # use ppoe::Transform;
+    /// # const INF: f64 = f64::INFINITY;
+    /// # // The planar arm of [`Chain::ppoe`].
+    /// # const ARM: Chain<f64, 2> = Chain::new("base", "tip", [
+    /// #     Joint::new("j1", JointKind::Revolute, [0., 0., 1., 0., 0., 0.], -INF, INF),
+    /// #     Joint::new("j2", JointKind::Revolute, [0., 0., 1., 0., -0.5, 0.], -INF, INF),
+    /// # ], Transform::from_parts([[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]], [1., 0., 0.]));
+    /// let covs = ARM.joints.map(|j| screw_noise(&j.screw, 1e-4));
+    /// let tip = ARM.ppoe_checked(&[0.3, -0.2], &covs, Convention::Right)?;
+    /// assert_eq!(tip, ARM.ppoe(&[0.3, -0.2], &covs, Convention::Right)); // valid input
+    /// // A negative variance is not a covariance; a NaN joint value is not a position.
+    /// let bad = ARM.joints.map(|j| screw_noise(&j.screw, -1e-4));
+    /// let err = ARM.ppoe_checked(&[0.3, -0.2], &bad, Convention::Right);
+    /// assert_eq!(err, Err(ppoe::Error::NotPositiveSemidefinite));
+    /// let err = ARM.ppoe_checked(&[f64::NAN, 0.0], &covs, Convention::Right);
+    /// assert_eq!(err, Err(ppoe::Error::NonFinite));
+    /// # Ok::<(), ppoe::Error>(())
+    /// ```
     pub fn ppoe_checked(
         &self,
         thetas: &[T; N],
@@ -235,6 +265,25 @@ impl<T: Real, const N: usize> Chain<T, N> {
     }
 
     /// The fourth-order PPOE (see [`ChainView::ppoe_fourth_order`]).
+    ///
+    /// ```
+    /// # use ppoe::chain::{screw_noise, Chain, Convention, Joint, JointKind};
+    /// # use ppoe::Transform;
+    /// # const INF: f64 = f64::INFINITY;
+    /// # // The planar arm of [`Chain::ppoe`].
+    /// # const ARM: Chain<f64, 2> = Chain::new("base", "tip", [
+    /// #     Joint::new("j1", JointKind::Revolute, [0., 0., 1., 0., 0., 0.], -INF, INF),
+    /// #     Joint::new("j2", JointKind::Revolute, [0., 0., 1., 0., -0.5, 0.], -INF, INF),
+    /// # ], Transform::from_parts([[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]], [1., 0., 0.]));
+    /// let covs = ARM.joints.map(|j| screw_noise(&j.screw, 1e-4));
+    /// let second = ARM.ppoe(&[0.3, -0.2], &covs, Convention::Right);
+    /// let fourth = ARM.ppoe_fourth_order(&[0.3, -0.2], &covs, Convention::Right);
+    /// approx::assert_abs_diff_eq!(fourth.pose, second.pose, epsilon = 1e-15); // same mean
+    /// // The fourth-order terms are products of two covariances: relative to Σ they are
+    /// // of the order of the variances (here 10⁻⁴ rad²), so at small noise both agree.
+    /// let rel = (fourth.cov - second.cov).amax() / second.cov.amax();
+    /// assert!(rel > 0.0 && rel < 1e-3);
+    /// ```
     pub fn ppoe_fourth_order(
         &self,
         thetas: &[T; N],

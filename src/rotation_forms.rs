@@ -17,6 +17,18 @@
 //!   [−π/2, π/2].
 //!
 //! All functions are generic over [`Real`], `no_std`, and allocate nothing.
+//!
+//! ```
+//! use ppoe::rotation_forms::{matrix_from_rpy, quaternion_from_matrix, rpy_from_matrix};
+//! // A URDF yaw of 90°: the quaternion [cos 45°, 0, 0, sin 45°], and back to the angles.
+//! let r = matrix_from_rpy(&[0.0, 0.0, core::f64::consts::FRAC_PI_2])?;
+//! let h = core::f64::consts::FRAC_1_SQRT_2;
+//! let q = quaternion_from_matrix(&r)?;
+//! approx::assert_abs_diff_eq!(q[..], [h, 0.0, 0.0, h][..], epsilon = 1e-15);
+//! let rpy = rpy_from_matrix(&r)?;
+//! assert!((rpy[2] - core::f64::consts::FRAC_PI_2).abs() < 1e-15 && rpy[0].abs() < 1e-15);
+//! # Ok::<(), ppoe::Error>(())
+//! ```
 
 use crate::error::Error;
 use crate::linalg::{Mat3, Matrix, Vec3};

@@ -4,6 +4,17 @@
 //! Conventions: a rotation matrix R maps vectors of the rotated frame into the reference
 //! frame (`x_ref = R · x_rot`, pytransform3d's `A2B`). [`hat`]`(ω)·x = ω × x`.
 //! Jacobians are *left* Jacobians: `Exp(ω + δ) ≈ Exp(J(ω)·δ)·Exp(ω)`.
+//!
+//! ```
+//! use ppoe::{so3, Vec3};
+//! // A quarter turn about z: the rotated frame's x axis is the reference frame's y axis.
+//! let r = so3::exp(&Vec3::new(0.0, 0.0, core::f64::consts::FRAC_PI_2));
+//! let x_ref = r * Vec3::new(1.0, 0.0, 0.0);
+//! approx::assert_abs_diff_eq!(x_ref, Vec3::new(0.0, 1.0, 0.0), epsilon = 1e-15);
+//! // hat(ω)·x is the cross product ω × x.
+//! let (w, x) = (Vec3::new(1.0, 2.0, 3.0), Vec3::new(-1.0, 0.5, 2.0));
+//! assert_eq!(so3::hat(&w) * x, w.cross(&x));
+//! ```
 
 use crate::linalg::{Mat3, Matrix, Vec3, Vector};
 use crate::scalar::Real;
@@ -112,9 +123,27 @@ pub(crate) fn i_plus_aw_bw2<T: Real>(w: &Vec3<T>, a: T, b: T) -> Mat3<T> {
 /// Exponential map `Exp(ω)`: the rotation by angle ‖ω‖ about ω (Rodrigues' formula
 /// `R = I + (sin θ/θ)·W + ((1 − cos θ)/θ²)·W²`, `W = [ω]×`).
 ///
-/// Corresponds to pytransform3d's `matrix_from_compact_axis_angle`. Accuracy: absolute
-/// error of a few ε in every element for any ω (no angle wrapping is needed; sin and cos
-/// are periodic). Non-finite input gives non-finite output.
+/// Corresponds to pytransform3d's `matrix_from_compact_axis_angle`. Non-finite input
+/// gives non-finite output.
+///
+/// # Accuracy
+///
+/// Absolute error of a few ε in every element for any ω (no angle wrapping is needed;
+/// sin and cos are periodic).
+///
+/// # Example
+///
+/// ```
+/// use ppoe::{so3, Vec3};
+/// // About z by θ: the closed form [[cos θ, −sin θ, 0], [sin θ, cos θ, 0], [0, 0, 1]].
+/// let t = 0.7_f64;
+/// let r = so3::exp(&Vec3::new(0.0, 0.0, t));
+/// let rz = [[t.cos(), -t.sin(), 0.0], [t.sin(), t.cos(), 0.0], [0.0, 0.0, 1.0]];
+/// approx::assert_abs_diff_eq!(r, ppoe::Mat3::from_rows(rz), epsilon = 1e-15);
+/// // f32 works the same way, with f32's own series cut-off (`Real::SERIES`).
+/// let r32 = so3::exp(&Vec3::new(0.0_f32, 0.0, 0.7));
+/// assert!((r32.0[1][0] - 0.7_f32.sin()).abs() < 1e-6);
+/// ```
 #[inline]
 pub fn exp<T: Real>(w: &Vec3<T>) -> Mat3<T> {
     ExpParts::new(w).rotation()
@@ -129,12 +158,16 @@ pub fn exp<T: Real>(w: &Vec3<T>) -> Mat3<T> {
 /// diagonal element, normalised, overall sign fixed by r (at exactly π the largest
 /// component is positive, as in the reference). Angle 0 returns axis (1, 0, 0).
 ///
-/// Accuracy (axis, for elements of R accurate to a few ε): ≈ ε/sin θ up to π/2 (the
+/// Never NaN for finite input; the input need not be exactly orthonormal.
+///
+/// # Accuracy
+///
+/// Of the axis, for elements of R accurate to a few ε: ≈ ε/sin θ up to π/2 (the
 /// axis's own conditioning for small angles, ≤ √2·ε from π/4 on), a few ε beyond; within
 /// 16 ε of the exact axis for θ ∈ [π/2, π] and within 4 ε/sin θ below
 /// (`tests/robustness_numerics.rs`). pytransform3d, which switches only 10⁻⁶ from π, has
 /// an axis error ≈ ε/δ at π − δ outside that band (2·10⁻¹⁰ at its edge) and up to δ/2
-/// inside it. Never NaN for finite input; the input need not be exactly orthonormal.
+/// inside it.
 pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
     let m = rot.0;
     let r = Vector([m[2][1] - m[1][2], m[0][2] - m[2][0], m[1][0] - m[0][1]]);
@@ -189,6 +222,17 @@ pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
 /// (see [`log_axis_angle`] for method and accuracy).
 ///
 /// Corresponds to pytransform3d's `compact_axis_angle_from_matrix`.
+///
+/// ```
+/// use ppoe::{so3, Vec3};
+/// // Log inverts Exp up to an angle of π ...
+/// let w = Vec3::new(0.3, -1.2, 0.8);
+/// approx::assert_abs_diff_eq!(so3::log(&so3::exp(&w)), w, epsilon = 1e-14);
+/// // ... and beyond π returns the same rotation with angle 2π − ‖ω‖ about −ω.
+/// let w = Vec3::new(0.0, 0.0, 4.0);
+/// let expected = Vec3::new(0.0, 0.0, 4.0 - 2.0 * core::f64::consts::PI);
+/// approx::assert_abs_diff_eq!(so3::log(&so3::exp(&w)), expected, epsilon = 1e-14);
+/// ```
 #[inline]
 pub fn log<T: Real>(rot: &Mat3<T>) -> Vec3<T> {
     let (axis, angle) = log_axis_angle(rot);
@@ -204,6 +248,21 @@ pub fn log<T: Real>(rot: &Mat3<T>) -> Vec3<T> {
 /// A few ε absolute in every element for any ω, including just above the series
 /// cut-off (within 8 ε of a series oracle for θ ∈ [SERIES, 64·SERIES],
 /// `tests/robustness_numerics.rs`).
+///
+/// # Example
+///
+/// ```
+/// use ppoe::{so3, Vec3};
+/// let w = Vec3::new(0.4, -0.3, 1.1);
+/// let j = so3::left_jacobian(&w);
+/// // J(ω)·ω = ω: a step along ω only changes the angle.
+/// approx::assert_abs_diff_eq!(j * w, w, epsilon = 1e-15);
+/// // The left perturbation: Exp(ω + δ) = Exp(J(ω)·δ)·Exp(ω) + O(‖δ‖²).
+/// let d = Vec3::new(1e-6, 2e-6, -1e-6);
+/// let lhs = so3::exp(&(w + d));
+/// let rhs = so3::exp(&(j * d)) * so3::exp(&w);
+/// approx::assert_abs_diff_eq!(lhs, rhs, epsilon = 1e-11);
+/// ```
 #[inline]
 pub fn left_jacobian<T: Real>(w: &Vec3<T>) -> Mat3<T> {
     ExpParts::new(w).jacobian()

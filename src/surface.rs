@@ -42,6 +42,17 @@
 //! k = 1, 2, 3 on the seed robot and another test chain. Its limit: it under-covers
 //! somewhat at large noise. Use [`chi2_3_radius`] to get k for a probability:
 //! pytransform3d's default factor 1.96 covers only 72 % in 3D, 95 % needs k = 2.796.
+//!
+//! ```
+//! use ppoe::surface::{chi2_3_probability, position_covariance};
+//! use ppoe::{se3, Mat6, Vector};
+//! // Right covariance of a pose turned 90° about z: the tool's x variance is the base's y.
+//! let mean = se3::exp(&Vector([0.0, 0.0, core::f64::consts::FRAC_PI_2, 0.0, 0.0, 0.0]));
+//! let cov = Mat6::from_diagonal(&Vector([1e-4, 1e-4, 1e-4, 4e-6, 1e-6, 1e-6]));
+//! assert!((position_covariance(&mean, &cov).0[1][1] - 4e-6).abs() < 1e-20);
+//! // One standard deviation holds only 20 % of a 3D Gaussian: erf(1/√2) − √(2/π)·e^(−½).
+//! assert!((chi2_3_probability(1.0_f64) - 0.198748).abs() < 1e-6);
+//! ```
 
 use crate::error::Error;
 use crate::linalg::{symmetric_part, Mat3, Mat6, Matrix, SymmetricEigen, Vec3, Vec6, Vector};
@@ -155,9 +166,20 @@ fn fill_grid<T: Real>(n_steps: usize, out: &mut [Vec3<T>], mut f: impl FnMut(&Ve
 ///
 /// # Accuracy
 ///
-/// `R·diag(radii²)·Rᵀ`
-/// reproduces `cov` to `O(ε·‖cov‖)` (observed on the golden files, relative to
-/// `max(1, max|cov|)`: 1.9·10⁻¹⁵ in f64, 7·10⁻⁷ in f32).
+/// `R·diag(radii²)·Rᵀ` reproduces `cov` to `O(ε·‖cov‖)` (observed on the golden files,
+/// relative to `max(1, max|cov|)`: 1.9·10⁻¹⁵ in f64, 7·10⁻⁷ in f32).
+///
+/// # Example
+///
+/// ```
+/// use ppoe::{surface::to_ellipsoid, Mat3, Vec3};
+/// let cov = Mat3::from_rows([[4.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 9.0]]);
+/// let (frame, radii) = to_ellipsoid(&Vec3::new(1.0, 2.0, 3.0), &cov)?;
+/// approx::assert_abs_diff_eq!(radii, Vec3::new(1.0, 2.0, 3.0), epsilon = 1e-15); // σ, ascending
+/// let (r, r2) = (frame.rotation, Mat3::from_diagonal(&radii.map(|x| x * x)));
+/// approx::assert_abs_diff_eq!(r * r2 * r.transpose(), cov, epsilon = 1e-14); // R·diag(r²)·Rᵀ
+/// # Ok::<(), ppoe::Error>(())
+/// ```
 ///
 /// # Errors
 ///
@@ -396,8 +418,20 @@ impl<T: Real> LiftSurface<T> {
     ///
     /// # Accuracy
     ///
-    /// `O(ε·κ^½)` relative
-    /// in B, κ the condition number of `Σ_vv` over its numerical range.
+    /// `O(ε·κ^½)` relative in B, κ the condition number of `Σ_vv` over its numerical range.
+    ///
+    /// # Example
+    ///
+    /// ```
+    /// use ppoe::{se3, surface::LiftSurface, Mat6, Vec3, Vector};
+    /// let mean = se3::exp(&Vector([0.0, 0.0, 0.5, 1.0, 0.0, 0.0]));
+    /// let cov = Mat6::from_diagonal(&Vector([1e-4, 1e-4, 1e-4, 1e-6, 1e-6, 1e-6]));
+    /// let lift = LiftSurface::new(&mean, &cov)?;
+    /// // Uncorrelated noise: s = (1, 0, 0) is one σ (1 mm) along the tool's own x axis.
+    /// let p = mean.transform_point(&Vec3::new(1e-3, 0.0, 0.0));
+    /// approx::assert_abs_diff_eq!(lift.point(&Vec3::new(1.0, 0.0, 0.0)), p, epsilon = 1e-15);
+    /// # Ok::<(), ppoe::Error>(())
+    /// ```
     ///
     /// # Errors
     ///
@@ -593,8 +627,7 @@ fn chi3_cdf(k: f64) -> f64 {
 ///
 /// # Accuracy
 ///
-/// A few f64 ulps (relative, also for small k), then the
-/// rounding to T.
+/// A few f64 ulps (relative, also for small k), then the rounding to T.
 #[inline]
 pub fn chi2_3_probability<T: Real>(k: T) -> T {
     T::lit(chi3_cdf(k.to_f64()))

@@ -14,6 +14,16 @@
 //!
 //! The trait implementations live in these modules; they add no item to the types' own
 //! modules, so the types read the same with or without the features.
+//!
+//! ```
+//! use ppoe::interop::ros::{from_ros_order, to_ros_order};
+//! use ppoe::{Mat6, Vector};
+//! // ppoe's rotation-first variances (rot x, y, z, then x, y, z) in ROS's order.
+//! let cov = Mat6::from_diagonal(&Vector([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]));
+//! let ros = to_ros_order(&cov);
+//! assert_eq!(ros.diagonal(), Vector([4.0, 5.0, 6.0, 1.0, 2.0, 3.0]));
+//! assert_eq!(from_ros_order(&ros), cov); // a permutation: exact both ways
+//! ```
 
 #[cfg(feature = "arbitrary")]
 pub mod arbitrary;

@@ -78,6 +78,19 @@ impl<T: Real, const N: usize> SymmetricEigen<T, N> {
     /// # Errors
     ///
     /// [`Error::NonFinite`] if `a` contains NaN or ±∞.
+    ///
+    /// # Example
+    ///
+    /// ```
+    /// use ppoe::{Matrix, SymmetricEigen, Vector};
+    /// // [[2, 1], [1, 2]]: eigenvalues 3 and 1, eigenvectors (1, 1)/√2 and (1, −1)/√2.
+    /// let e = SymmetricEigen::new(&Matrix([[2.0_f64, 1.0], [1.0, 2.0]]))?;
+    /// approx::assert_abs_diff_eq!(e.values, Vector([3.0, 1.0]), epsilon = 1e-15);
+    /// let h = core::f64::consts::FRAC_1_SQRT_2; // largest component positive, column 1
+    /// approx::assert_abs_diff_eq!(e.vectors.column(1), Vector([h, -h]), epsilon = 1e-15);
+    /// assert!(e.is_psd(1e-12) && e.rank() == 2);
+    /// # Ok::<(), ppoe::Error>(())
+    /// ```
     pub fn new(a: &Matrix<T, N, N>) -> Result<Self, Error> {
         if !a.is_finite() {
             return Err(Error::NonFinite);

@@ -5,6 +5,22 @@
 //! and out without our types: `Mat6::from(array)`, `m.0[i][j]`, `<[[T; 6]; 6]>::from(m)`.
 //! All loops have compile-time bounds, so indexing cannot panic and is unrolled by the
 //! optimiser.
+//!
+//! ```
+//! use ppoe::{Mat3, Mat6, Vec3, Vec6, Vector};
+//! let a = Vec3::new(1.0, 2.0, 2.0);
+//! assert_eq!(a.norm(), 3.0);
+//! assert_eq!(a.cross(&Vec3::new(0.0, 0.0, 1.0)), Vec3::new(2.0, -1.0, 0.0));
+//! let m = Mat3::from_rows([[2.0, 0.0, 0.0], [0.0, 3.0, 0.0], [0.0, 0.0, 4.0]]);
+//! assert_eq!(m * a, Vec3::new(2.0, 6.0, 8.0)); // matrix times column vector
+//! assert_eq!(m.determinant(), 24.0);
+//! // 6-vectors and 6×6 blocks are rotation first: (ω, v) and [[ωω, ωv], [vω, vv]].
+//! let xi: Vec6<f64> = Vector([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+//! assert_eq!(xi.translation(), Vec3::new(4.0, 5.0, 6.0));
+//! let c = Mat6::from_blocks(&m, &Mat3::zeros(), &Mat3::zeros(), &Mat3::identity());
+//! assert_eq!(c.block(0, 0), m);
+//! assert_eq!(<[[f64; 6]; 6]>::from(c)[5][5], 1.0); // plain arrays in and out
+//! ```
 
 mod approx_eq;
 mod cholesky;

@@ -7,6 +7,17 @@
 //! tolerances unreachable).
 //! It is also the single place where the elementary functions (sin, cos, sqrt, atan2)
 //! are chosen per precision.
+//!
+//! ```
+//! use ppoe::{so3, Real, Vec3};
+//! // Written once, run in f32 and f64: T's own ε and tolerances come with it.
+//! fn angle<T: Real>(w: &Vec3<T>) -> T {
+//!     so3::log_axis_angle(&so3::exp(w)).1
+//! }
+//! assert!((angle(&Vec3::new(0.0_f32, 0.0, 0.5)) - 0.5).abs() <= 4.0 * f32::EPS);
+//! assert!((angle(&Vec3::new(0.0_f64, 0.0, 0.5)) - 0.5).abs() <= 4.0 * f64::EPS);
+//! assert!(f64::from(f32::TOL) > 1e4 * f64::TOL); // √ε of each type: 3.5e-4, 1.5e-8
+//! ```
 
 use core::fmt::{Debug, Display};
 use core::ops::{AddAssign, DivAssign, MulAssign, SubAssign};
