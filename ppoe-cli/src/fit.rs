@@ -17,10 +17,10 @@ type FitInput = (Vec<Sample>, Option<[[f64; 6]; 6]>);
 /// Parses the input `{"samples":[{"thetas":[N],"pose":[[4×4]]}],"measurement_cov":6×6}`;
 /// errors name the sample.
 pub fn parse_input(text: &str) -> anyhow::Result<FitInput> {
-    let v: Value = serde_json::from_str(text).context(
-        "malformed input JSON (expected {\"samples\":[{\"thetas\":[N numbers],\"pose\":[[4×4]]}], \
-         \"measurement_cov\": optional 6×6})",
-    )?;
+    let v: Value = serde_json::from_str(text).context(concat!(
+        "malformed input JSON (expected {\"samples\":[{\"thetas\":[N numbers],",
+        "\"pose\":[[4×4]]}], \"measurement_cov\": optional 6×6})"
+    ))?;
     let Some(list) = v.get("samples").and_then(Value::as_array) else {
         bail!("the input has no \"samples\" array");
     };
