@@ -6,9 +6,12 @@
 //! pytransform3d's `uncertainty` module it is built on.
 //!
 //! * `#![no_std]`, no allocator, fixed-size types, no `unsafe`. No function is meant to
-//!   panic, but only the PPOE path (`ChainView::ppoe`) is *proven* panic-free, by a
-//!   link-time check on Cortex-M4F (`scripts/firmware.sh`); the other functions are
-//!   fuzzed (`FUZZING.md`), which finds panics but proves their absence for none.
+//!   panic. A link-time check on Cortex-M4F (`scripts/firmware.sh`) *proves* the public
+//!   entry points of `so3`, `se3`, `uncertainty`, `chain` (the PPOE included) and the
+//!   eigen-decomposition panic-free in f32 and f64; the surface grids (`lift_surface`,
+//!   `marginal_surface`, `surface_grid`, `to_projected_ellipsoid*`, `LiftSurface::grid`)
+//!   keep bounds checks the compiler cannot remove and are only fuzzed (`FUZZING.md`),
+//!   which finds panics but proves their absence for none.
 //!   Checked functions return an [`Error`] for bad input and for results that are not
 //!   finite.
 //! * Generic over `f32` and `f64` through one trait, [`Real`].
