@@ -24,6 +24,11 @@
 //! rather than in W lanes with zero covariances padding the empty ones: a padded lane
 //! costs a whole transport, and its result is zero.
 //!
+//! Why joints with a zero covariance are skipped: fixed or noiseless joints are common,
+//! and their transport adds exactly zero; the check (a scan that stops at the first
+//! non-zero entry) costs far less than a transport. The groups are filled with the
+//! joints that have a covariance only, so skipping one also saves lanes.
+//!
 //! Why the schedule is split into a base-frame and a tip-frame function: one function
 //! holding both loops left the optimiser more live values than registers, and it
 //! spilled; each loop on its own compiles to fewer instructions.
@@ -114,7 +119,7 @@ impl<T: Real, const W: usize> Sums<T, W> {
     fn add(&mut self, group: &[(Congruence<T>, &Mat6<T>); W], filled: usize) {
         if filled == W {
             Congruence::add_lower_packed(group, &mut self.lanes);
-        } else {
+        } else if W > 1 {
             for (c, cov) in group.iter().take(filled) {
                 c.add_lower(cov, &mut self.tail);
             }
@@ -124,7 +129,9 @@ impl<T: Real, const W: usize> Sums<T, W> {
     /// The sum over the lanes and the tail, mirrored: exactly symmetric.
     #[inline(always)]
     fn total(&self) -> Mat6<T> {
-        let mut acc = self.tail;
+        // With one lane there is no tail (every group is full): starting from zeros lets
+        // the optimiser drop it.
+        let mut acc = if W > 1 { self.tail } else { [[T::ZERO; 6]; 6] };
         for (arow, lrow) in acc.iter_mut().zip(&self.lanes) {
             for (a, l) in arow.iter_mut().zip(lrow) {
                 // All 36, only the lower triangle is kept.
@@ -152,13 +159,18 @@ fn base_frame<T: Real, const W: usize>(
         let mut group = [(Congruence::ZERO, &zero); W];
         let mut filled = 0;
         for slot in group.iter_mut() {
-            if let (Some(j), Some(t), Some(cov)) = (chain.joints.get(i), thetas.get(i), covs.get(i))
+            // The next joint with a covariance, moving P along the joints skipped.
+            while let (Some(j), Some(t), Some(cov)) =
+                (chain.joints.get(i), thetas.get(i), covs.get(i))
             {
+                i += 1;
                 p = p.compose(&j.displacement(j.clip(*t, false)));
-                *slot = (Congruence::of(&p), cov);
-                filled += 1;
+                if !is_zero(cov) {
+                    *slot = (Congruence::of(&p), cov);
+                    filled += 1;
+                    break;
+                }
             }
-            i += 1;
         }
         sums.add(&group, filled);
     }
@@ -186,21 +198,40 @@ fn tip_frame<T: Real, const W: usize>(
         let mut group = [(Congruence::ZERO, &zero); W];
         let mut filled = 0;
         for slot in group.iter_mut() {
-            if left == 0 {
-                break; // the tail
-            }
-            left -= 1;
-            let i = left;
-            if let (Some(j), Some(t), Some(cov)) = (chain.joints.get(i), thetas.get(i), covs.get(i))
-            {
-                *slot = (Congruence::of_inverse(&g), cov);
+            // The next joint towards the base with a covariance, moving G along the
+            // joints skipped.
+            while let Some(i) = left.checked_sub(1) {
+                left = i;
+                let (Some(j), Some(t), Some(cov)) =
+                    (chain.joints.get(i), thetas.get(i), covs.get(i))
+                else {
+                    break;
+                };
+                let c = Congruence::of_inverse(&g);
                 g = j.displacement(j.clip(*t, clip_continuous)).compose(&g);
-                filled += 1;
+                if !is_zero(cov) {
+                    *slot = (c, cov);
+                    filled += 1;
+                    break;
+                }
             }
         }
         sums.add(&group, filled);
     }
     g
+}
+
+/// Whether every entry of `cov` is zero (a joint without noise): its transport adds
+/// nothing. NaN is not zero, so a non-finite covariance is still transported.
+#[inline(always)]
+fn is_zero<T: Real>(cov: &Mat6<T>) -> bool {
+    // The diagonal first: a joint with noise has a non-zero variance, so the scan
+    // usually stops within six entries.
+    cov.0
+        .iter()
+        .enumerate()
+        .all(|(i, r)| r.get(i).is_none_or(|x| *x == T::ZERO))
+        && cov.0.iter().flatten().all(|x| *x == T::ZERO)
 }
 
 /// The arithmetic of the structured transport: a scalar, or W scalars in lanes ([`Pack`]).
