@@ -87,13 +87,7 @@ fn arm7<T: Real>() -> (Vec<Joint<T>>, Transform<T>, Vec<T>, Vec<Mat6<T>>) {
             let s = Vec3::<f64>::new(a.sin() * 0.3, a.cos() * 0.4, 0.866);
             let q = Vec3::new(0.1 * i as f64, 0.05, 0.2 * i as f64);
             let screw = se3::screw_axis(&q, &s, 0.0).unwrap();
-            Joint::from_f64(&Joint::new(
-                "j",
-                JointKind::Revolute,
-                screw.0,
-                -3.0,
-                3.0,
-            ))
+            Joint::from_f64(&Joint::new("j", JointKind::Revolute, screw.0, -3.0, 3.0))
         })
         .collect();
     let home = Transform::from_parts(
@@ -143,7 +137,10 @@ fn cases<T: Real>(t: &str) -> Vec<Case> {
             v.push((
                 format!("{name}/{t}/{cname}"),
                 Box::new(move || {
-                    let chain = ChainView { joints: &j, home: h };
+                    let chain = ChainView {
+                        joints: &j,
+                        home: h,
+                    };
                     black_box(chain.ppoe(black_box(&th), black_box(&cov), conv)).ok();
                 }),
             ));
