@@ -78,8 +78,11 @@ fn seed_inputs<T: Real>() -> (Vec<T>, Vec<Mat6<T>>) {
     )
 }
 
+/// Joints, home pose, joint values and joint covariances of a chain.
+type Inputs<T> = (Vec<Joint<T>>, Transform<T>, Vec<T>, Vec<Mat6<T>>);
+
 /// A 7-joint arm with varied axes and a full (dense, positive definite) covariance per joint.
-fn arm7<T: Real>() -> (Vec<Joint<T>>, Transform<T>, Vec<T>, Vec<Mat6<T>>) {
+fn arm7<T: Real>() -> Inputs<T> {
     let n = 7;
     let joints = (0..n)
         .map(|i| {
