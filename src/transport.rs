@@ -131,11 +131,12 @@ impl<T: Real, const W: usize> Sums<T, W> {
     fn total(&self) -> Mat6<T> {
         // With one lane there is no tail (every group is full): starting from zeros lets
         // the optimiser drop it.
-        let mut acc = if W > 1 { self.tail } else { [[T::ZERO; 6]; 6] };
-        for (arow, lrow) in acc.iter_mut().zip(&self.lanes) {
-            for (a, l) in arow.iter_mut().zip(lrow) {
+        let mut acc = [[T::ZERO; 6]; 6];
+        for ((arow, lrow), trow) in acc.iter_mut().zip(&self.lanes).zip(&self.tail) {
+            for ((a, l), t) in arow.iter_mut().zip(lrow).zip(trow) {
                 // All 36, only the lower triangle is kept.
-                *a = l.0.iter().fold(*a, |s, x| s + *x);
+                let start = if W > 1 { *t } else { T::ZERO };
+                *a = l.0.iter().fold(start, |s, x| s + *x);
             }
         }
         mirror_lower(acc)
