@@ -19,13 +19,27 @@
 //! buffer lane by lane compiled to a `memset` call and scalar stores that the vector
 //! loads then waited on.
 //!
+//! Why a one-lane tail: when the joint count is not a multiple of W, the last group's
+//! joints are transported one lane at a time (the code path of the one-lane targets)
+//! rather than in W lanes with zero covariances padding the empty ones: a padded lane
+//! costs a whole transport, and its result is zero.
+//!
+//! Why joints with a zero covariance are skipped: fixed or noiseless joints are common,
+//! and their transport adds exactly zero; the check (a scan that stops at the first
+//! non-zero entry) costs far less than a transport. The groups are filled with the
+//! joints that have a covariance only, so skipping one also saves lanes.
+//!
+//! Why the schedule is split into a base-frame and a tip-frame function: one function
+//! holding both loops left the optimiser more live values than registers, and it
+//! spilled; each loop on its own compiles to fewer instructions.
+//!
 //! Why no closures in the per-joint loops: `core::array::from_fn` and closures there were
 //! left as calls by the optimiser, and each call spilled every live register. The loops
 //! over the lanes are written out; the closures that remain ([`Pack::gather`]) are
 //! always inlined.
 //!
 //! The rounding: with W lanes the transported covariances are summed in W partial sums,
-//! added at the end ([`sum_lanes`]), so results of different widths differ by a few ε of
+//! added at the end (`Sums::total`), so results of different widths differ by a few ε of
 //! the covariance's size (`tests/lanes.rs` compares widths 1, 2 and 4).
 
 use crate::chain::ChainView;
@@ -53,8 +67,8 @@ pub(crate) const fn lanes<T: Real>() -> usize {
 
 /// The PPOE of `chain` after the length check, W transports at a time: the joints go in
 /// groups of W, each group's W congruences and covariances are built as locals and
-/// transported in the W lanes together; the group at the far end is padded with zero
-/// covariances.
+/// transported in the W lanes together; a last group of fewer than W joints is
+/// transported one lane at a time (no padded lanes).
 #[inline(always)]
 pub(crate) fn ppoe_lanes<T: Real, const W: usize>(
     chain: &ChainView<'_, T>,
@@ -62,60 +76,27 @@ pub(crate) fn ppoe_lanes<T: Real, const W: usize>(
     covs: &[Mat6<T>],
     convention: Convention,
 ) -> UncertainPose<T> {
-    let clip_continuous = convention == Convention::Pytransform3d;
-    let n = chain.joints.len();
-    let zero = Mat6::zeros();
-    let mut acc = [[Pack([T::ZERO; W]); 6]; 6];
+    let mut sums = Sums {
+        lanes: [[Pack([T::ZERO; W]); 6]; 6],
+        tail: [[T::ZERO; 6]; 6],
+    };
     let pose = if convention == Convention::Left {
-        // Base frame: Σ_left = Σᵢ Ad(Pᵢ)·covᵢ·Ad(Pᵢ)ᵀ, Pᵢ = D₁…Dᵢ (the reference's sum
-        // moved by Ad(Pₙ)); one transport per joint and none at the end.
-        let mut p = Transform::identity();
-        for m in 0..n.div_ceil(W) {
-            let mut group = [(Congruence::of(&p), &zero); W];
-            for (k, slot) in group.iter_mut().enumerate() {
-                let i = m * W + k;
-                if let (Some(j), Some(t), Some(cov)) =
-                    (chain.joints.get(i), thetas.get(i), covs.get(i))
-                {
-                    p = p.compose(&j.displacement(j.clip(*t, clip_continuous)));
-                    *slot = (Congruence::of(&p), cov);
-                }
-            }
-            Congruence::add_lower_packed(&group, &mut acc);
-        }
-        p * chain.home
+        base_frame(chain, thetas, covs, &mut sums) * chain.home
     } else {
-        // Tip frame, from the tip backwards: Σ_right = Σᵢ Ad(Gᵢ⁻¹)·covᵢ·Ad(Gᵢ⁻¹)ᵀ with
-        // Gᵢ = Dᵢ₊₁…Dₙ·M (the reference's recursion unrolled, then moved by Ad(M⁻¹)).
-        // One transport per joint and none at the end, and each uses the lever arm
-        // from joint i to the tip, not through the base and back. The reference's
-        // variant starts from Gₙ = I and moves the sum by Ad(M) instead.
-        let mut g = if convention == Convention::Right {
+        let start = if convention == Convention::Right {
             chain.home
         } else {
             Transform::identity()
         };
-        for m in 0..n.div_ceil(W) {
-            let mut group = [(Congruence::of_inverse(&g), &zero); W];
-            for (k, slot) in group.iter_mut().enumerate() {
-                // Joint n − 1 − (m·W + k); none below 0 (padding lanes).
-                let i = n.wrapping_sub(m * W + k + 1);
-                if let (Some(j), Some(t), Some(cov)) =
-                    (chain.joints.get(i), thetas.get(i), covs.get(i))
-                {
-                    *slot = (Congruence::of_inverse(&g), cov);
-                    g = j.displacement(j.clip(*t, clip_continuous)).compose(&g);
-                }
-            }
-            Congruence::add_lower_packed(&group, &mut acc);
-        }
+        let clip_continuous = convention == Convention::Pytransform3d;
+        let g = tip_frame(chain, thetas, covs, clip_continuous, start, &mut sums);
         if convention == Convention::Right {
             g
         } else {
             g * chain.home
         }
     };
-    let cov = sum_lanes(&acc);
+    let cov = sums.total();
     let cov = if convention == Convention::Pytransform3d {
         chain.home.transport_covariance(&cov)
     } else {
@@ -124,18 +105,134 @@ pub(crate) fn ppoe_lanes<T: Real, const W: usize>(
     UncertainPose { pose, cov }
 }
 
-/// The sum over the W lanes of the lower triangle accumulated by
-/// [`Congruence::add_lower_packed`], mirrored: exactly symmetric.
-#[inline(always)]
-fn sum_lanes<T: Real, const W: usize>(lanes: &[[Pack<T, W>; 6]; 6]) -> Mat6<T> {
-    let mut acc = [[T::ZERO; 6]; 6];
-    for (arow, lrow) in acc.iter_mut().zip(lanes) {
-        for (a, l) in arow.iter_mut().zip(lrow) {
-            // Lane 0 plus the others (all 36, only the lower triangle is kept).
-            *a = l.0.iter().skip(1).fold(l.0[0], |s, x| s + *x);
+/// The lower triangles of the transported covariances, summed: W partial sums in lanes,
+/// and one for the joints of the last, incomplete group.
+struct Sums<T, const W: usize> {
+    lanes: [[Pack<T, W>; 6]; 6],
+    tail: [[T; 6]; 6],
+}
+
+impl<T: Real, const W: usize> Sums<T, W> {
+    /// Adds the transports of `group`'s first `filled` entries: all W in lanes together,
+    /// fewer one lane at a time.
+    #[inline(always)]
+    fn add(&mut self, group: &[(Congruence<T>, &Mat6<T>); W], filled: usize) {
+        if filled == W {
+            Congruence::add_lower_packed(group, &mut self.lanes);
+        } else if W > 1 {
+            for (c, cov) in group.iter().take(filled) {
+                c.add_lower(cov, &mut self.tail);
+            }
         }
     }
-    mirror_lower(acc)
+
+    /// The sum over the lanes and the tail, mirrored: exactly symmetric.
+    #[inline(always)]
+    fn total(&self) -> Mat6<T> {
+        // With one lane there is no tail (every group is full): starting from zeros lets
+        // the optimiser drop it.
+        let mut acc = [[T::ZERO; 6]; 6];
+        for ((arow, lrow), trow) in acc.iter_mut().zip(&self.lanes).zip(&self.tail) {
+            for ((a, l), t) in arow.iter_mut().zip(lrow).zip(trow) {
+                // All 36, only the lower triangle is kept.
+                let start = if W > 1 { *t } else { T::ZERO };
+                *a = l.0.iter().fold(start, |s, x| s + *x);
+            }
+        }
+        mirror_lower(acc)
+    }
+}
+
+/// Base frame: Σ_left = Σᵢ Ad(Pᵢ)·covᵢ·Ad(Pᵢ)ᵀ, Pᵢ = D₁…Dᵢ (the reference's sum moved by
+/// Ad(Pₙ)); one transport per joint and none at the end. Returns Pₙ.
+#[inline(always)]
+fn base_frame<T: Real, const W: usize>(
+    chain: &ChainView<'_, T>,
+    thetas: &[T],
+    covs: &[Mat6<T>],
+    sums: &mut Sums<T, W>,
+) -> Transform<T> {
+    let n = chain.joints.len();
+    let zero = Mat6::zeros();
+    let mut p = Transform::identity();
+    let mut i = 0;
+    while i < n {
+        let mut group = [(Congruence::ZERO, &zero); W];
+        let mut filled = 0;
+        for slot in group.iter_mut() {
+            // The next joint with a covariance, moving P along the joints skipped.
+            while let (Some(j), Some(t), Some(cov)) =
+                (chain.joints.get(i), thetas.get(i), covs.get(i))
+            {
+                i += 1;
+                p = p.compose(&j.displacement(j.clip(*t, false)));
+                if !is_zero(cov) {
+                    *slot = (Congruence::of(&p), cov);
+                    filled += 1;
+                    break;
+                }
+            }
+        }
+        sums.add(&group, filled);
+    }
+    p
+}
+
+/// Tip frame, from the tip backwards: Σ_right = Σᵢ Ad(Gᵢ⁻¹)·covᵢ·Ad(Gᵢ⁻¹)ᵀ with
+/// Gᵢ = Dᵢ₊₁…Dₙ·`start` (the reference's recursion unrolled, then moved by Ad(M⁻¹) for
+/// `start` = M). One transport per joint and none at the end, and each uses the lever arm
+/// from joint i to the tip, not through the base and back. The reference's variant starts
+/// from I and moves the sum by Ad(M) instead. Returns G₀.
+#[inline(always)]
+fn tip_frame<T: Real, const W: usize>(
+    chain: &ChainView<'_, T>,
+    thetas: &[T],
+    covs: &[Mat6<T>],
+    clip_continuous: bool,
+    start: Transform<T>,
+    sums: &mut Sums<T, W>,
+) -> Transform<T> {
+    let zero = Mat6::zeros();
+    let mut g = start;
+    let mut left = chain.joints.len();
+    while left > 0 {
+        let mut group = [(Congruence::ZERO, &zero); W];
+        let mut filled = 0;
+        for slot in group.iter_mut() {
+            // The next joint towards the base with a covariance, moving G along the
+            // joints skipped.
+            while let Some(i) = left.checked_sub(1) {
+                left = i;
+                let (Some(j), Some(t), Some(cov)) =
+                    (chain.joints.get(i), thetas.get(i), covs.get(i))
+                else {
+                    break;
+                };
+                let c = Congruence::of_inverse(&g);
+                g = j.displacement(j.clip(*t, clip_continuous)).compose(&g);
+                if !is_zero(cov) {
+                    *slot = (c, cov);
+                    filled += 1;
+                    break;
+                }
+            }
+        }
+        sums.add(&group, filled);
+    }
+    g
+}
+
+/// Whether every entry of `cov` is zero (a joint without noise): its transport adds
+/// nothing. NaN is not zero, so a non-finite covariance is still transported.
+#[inline(always)]
+fn is_zero<T: Real>(cov: &Mat6<T>) -> bool {
+    // The diagonal first: a joint with noise has a non-zero variance, so the scan
+    // usually stops within six entries.
+    cov.0
+        .iter()
+        .enumerate()
+        .all(|(i, r)| r.get(i).is_none_or(|x| *x == T::ZERO))
+        && cov.0.iter().flatten().all(|x| *x == T::ZERO)
 }
 
 /// The arithmetic of the structured transport: a scalar, or W scalars in lanes ([`Pack`]).
@@ -216,6 +313,12 @@ pub(crate) struct Congruence<T> {
 }
 
 impl<T: Real> Congruence<T> {
+    /// A placeholder for the unfilled slots of a group (never transported).
+    const ZERO: Self = Self {
+        r: [[T::ZERO; 3]; 3],
+        q: [T::ZERO; 3],
+    };
+
     /// The congruence by `Ad(t)`.
     #[inline(always)]
     pub(crate) fn of(t: &Transform<T>) -> Self {

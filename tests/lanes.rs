@@ -4,6 +4,10 @@
 //! (and four lanes) here, on every golden chain and case, in f32 and f64, for the three
 //! conventions, with and without the joints' displacement constants.
 //!
+//! The golden chains have 5, 6 and 7 joints: with two and four lanes the last group is
+//! incomplete for some (transported one lane at a time), full for others. Joints with a
+//! zero covariance are skipped (`zero_covariances_*`).
+//!
 //! Oracle: the schedules are the same operations on the same values, except that W lanes
 //! sum the transported covariances in W partial sums (added at the end). So pose and
 //! covariance of every width must agree with those of one lane to rounding:
@@ -13,10 +17,17 @@
 mod common;
 use common::*;
 use ppoe::chain::{ChainView, Convention};
-use ppoe::{Mat6, Real, Transform};
+use ppoe::{Mat6, Matrix, Real, Transform};
 
 const F64_BOUND: f64 = 1e-14;
 const F32_BOUND: f64 = 1e-5;
+
+/// `max|a − b|`.
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+}
 
 /// `max|a − b| / max|b|`, 0 when both are zero.
 fn rel_to_max(a: &[f64], b: &[f64]) -> f64 {
@@ -112,6 +123,84 @@ fn lane_widths_agree_f64() {
 #[test]
 fn lane_widths_agree_f32() {
     all_files::<f32>(F32_BOUND);
+}
+
+/// Joints with a zero covariance are skipped by the schedule; one with a tiny non-zero
+/// covariance is transported. The PPOE is linear in the joint covariances, so the two must
+/// agree to rounding of the all-joints covariance (the tiny one's contribution,
+/// ~1e-200 resp. 1e-30 of it, is far below that), at every width, for every pattern of zero joints (every subset of the
+/// first joints: odd and even counts of transported joints, zero joints between, before and
+/// after them) and every convention.
+fn zero_covariances<T: Real>(tiny: f64, bound: f64) {
+    for file in PPOE_FILES {
+        let g = golden(&format!("ppoe/{file}.json"));
+        let (joints, home) = chain_from_golden::<T>(&g);
+        let chain = ChainView {
+            joints: &joints,
+            home,
+        };
+        let n = joints.len();
+        let th: Vec<T> = (0..n).map(|i| T::lit(0.3 - 0.2 * i as f64)).collect();
+        let full: Vec<Mat6<T>> = (0..n)
+            .map(|i| {
+                let mut m = Mat6::zeros();
+                for (r, row) in m.0.iter_mut().enumerate() {
+                    for (c, x) in row.iter_mut().enumerate() {
+                        let d = if r == c { 1e-3 } else { 0.0 };
+                        *x = T::lit(d + 1e-5 * ((r + c + i) % 4) as f64);
+                    }
+                }
+                m
+            })
+            .collect();
+        // The errors are relative to the covariance of all joints' noise: with few (or
+        // no) joints transported the result itself can be zero.
+        let all = chain.ppoe(&th, &full, Convention::Right).unwrap().cov;
+        let scale = cov_flat(&all).iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let mut compared = 0;
+        for mask in 0u32..(1 << n.min(8)) {
+            let pick = |scale: f64| -> Vec<Mat6<T>> {
+                (0..n)
+                    .map(|i| {
+                        if mask & (1 << i) != 0 {
+                            full[i]
+                        } else {
+                            Matrix(full[i].0.map(|r| r.map(|x| x * T::lit(scale))))
+                        }
+                    })
+                    .collect()
+            };
+            let (zeroed, tiny_covs) = (pick(0.0), pick(tiny));
+            for conv in [
+                Convention::Right,
+                Convention::Left,
+                Convention::Pytransform3d,
+            ] {
+                for w in [1, 2, 4] {
+                    let a = chain.ppoe_with_lanes(&th, &zeroed, conv, w).unwrap();
+                    let b = chain.ppoe_with_lanes(&th, &tiny_covs, conv, w).unwrap();
+                    assert_eq!(a.pose, b.pose, "{file} {mask:b} {conv:?} {w}");
+                    let e = max_diff(&cov_flat(&a.cov), &cov_flat(&b.cov)) / scale;
+                    assert!(
+                        e <= bound,
+                        "{file} mask {mask:b} {conv:?} {w} lanes: {e:.2e} > {bound:.0e}"
+                    );
+                    compared += 1;
+                }
+            }
+        }
+        assert!(compared > 0);
+    }
+}
+
+#[test]
+fn zero_covariances_f64() {
+    zero_covariances::<f64>(1e-200, F64_BOUND);
+}
+
+#[test]
+fn zero_covariances_f32() {
+    zero_covariances::<f32>(1e-30, F32_BOUND);
 }
 
 /// A length mismatch is an error at every width, as for `ppoe`.
