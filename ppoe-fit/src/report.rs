@@ -86,7 +86,7 @@ pub fn chi2_cdf(x: f64, dof: usize) -> f64 {
         return 0.0;
     }
     let h = 0.5 * x;
-    if dof % 2 == 0 {
+    if dof.is_multiple_of(2) {
         let (mut term, mut sum) = (1.0, 0.0);
         for k in 0..dof / 2 {
             sum += term;
