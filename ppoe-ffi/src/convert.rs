@@ -51,9 +51,8 @@ fn joint<T: Real>(j: &ppoe_joint<T>) -> Result<Joint<T>, ppoe_status> {
         PPOE_JOINT_PRISMATIC => JointKind::Prismatic,
         _ => return Err(PPOE_ERR_BAD_ENUM),
     };
-    let mut out = Joint::new("", kind, j.screw, j.lower, j.upper);
-    if j.has_constants != 0 {
-        out.constants = Some(JointConstants::new(
+    let out = if j.has_constants != 0 {
+        let k = JointConstants::new(
             j.scale,
             j.axis,
             j.axis_sq,
@@ -61,8 +60,11 @@ fn joint<T: Real>(j: &ppoe_joint<T>) -> Result<Joint<T>, ppoe_status> {
             j.v,
             j.axis_cross_v,
             j.axial_v,
-        ));
-    }
+        );
+        Joint::with_constants("", kind, j.screw, j.lower, j.upper, k)
+    } else {
+        Joint::new("", kind, j.screw, j.lower, j.upper)
+    };
     Ok(out)
 }
 
