@@ -22,7 +22,8 @@ use core::hint::black_box as bb;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::debug;
 use ppoe::chain::{self, Chain, ChainView, Convention, Joint, JointConstants};
-use ppoe::surface::{self, LiftSurface, Surface, SymmetricEigen};
+use ppoe::linalg::SymmetricEigen;
+use ppoe::surface::{self, LiftSurface, Surface};
 use ppoe::uncertainty::{self, IterationOptions, Order};
 use ppoe::{se3, so3, Mat3, Mat6, Matrix, Real, Transform, Vec3, Vec6, Vector};
 
