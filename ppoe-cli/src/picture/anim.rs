@@ -2,7 +2,7 @@
 //! only the rectangle that changed, with unchanged pixels inside it transparent (they
 //! compress to almost nothing), so a 200-frame animation stays small.
 
-use super::{key_colours, output, rgb_buffer, Frame, View, GIF_DELAY_MS};
+use super::{key_colours, rgb_buffer, Frame, View, GIF_DELAY_MS};
 use anyhow::{anyhow, Context};
 use std::borrow::Cow;
 use std::path::Path;
@@ -189,7 +189,7 @@ pub fn write(path: &Path, frames: &[Frame], progress: &mut dyn FnMut(usize)) -> 
     let body_rgb: Vec<[u8; 3]> = frames[0].bodies.iter().map(|b| b.rgb).collect();
     let palette = Palette::learn(&samples, &body_rgb);
     drop(samples);
-    output::atomically(path, |tmp| {
+    crate::output::write_atomic_path(path, |tmp| {
         let file = std::fs::File::create(tmp)
             .with_context(|| format!("cannot create {}", tmp.display()))?;
         let mut enc = gif::Encoder::new(

@@ -26,7 +26,6 @@ mod chart;
 pub mod geom;
 pub mod html;
 mod legend;
-mod output;
 mod scene;
 pub mod solid;
 
@@ -260,7 +259,7 @@ pub fn write_png(path: &Path, frame: &Frame) -> anyhow::Result<()> {
 /// # Errors
 /// A drawing failure, or the file cannot be written (an earlier file at `path` is kept).
 pub fn write_png_with_view(path: &Path, frame: &Frame, view: &View) -> anyhow::Result<()> {
-    output::atomically(path, |tmp| {
+    crate::output::write_atomic_path(path, |tmp| {
         let root = BitMapBackend::new(tmp, (view.width, view.height)).into_drawing_area();
         draw(&root, frame, view)?;
         root.present().map_err(|e| anyhow!("{e}"))
@@ -280,7 +279,7 @@ pub fn write_svg(path: &Path, frame: &Frame) -> anyhow::Result<()> {
         draw(&root, frame, &view)?;
         root.present().map_err(|e| anyhow!("{e}"))?;
     }
-    output::write_bytes(path, text.as_bytes())
+    crate::output::write_atomic(path, |w| w.write_all(text.as_bytes()))
 }
 
 /// Writes the frames as an animated GIF: 800×700, [`GIF_DELAY_MS`] ms apart, one fixed
@@ -307,7 +306,7 @@ pub fn write_gif_with_progress(
 /// A drawing failure, or the file cannot be written (an earlier file at `path` is kept).
 pub fn write_html(path: &Path, frames: &[Frame]) -> anyhow::Result<()> {
     let page = html::page(frames)?;
-    output::write_bytes(path, page.as_bytes())
+    crate::output::write_atomic(path, |w| w.write_all(page.as_bytes()))
 }
 
 /// The colours the pictures draw with, kept exactly in the GIF palette (small items such
