@@ -1,9 +1,9 @@
 //! ppoe on a microcontroller core: the seed robot's PPOE in f64 and f32, dense and rank-one
 //! (`ppoe_rank1`), against expectations computed on the host at build time (see build.rs;
 //! the rank-one cases are expected from the dense PPOE of their screw-noise covariances).
-//! Prints a summary over
-//! semihosting and exits QEMU with status 0 if every case matches, 1 otherwise (a panic
-//! exits with 1 too). Cortex-M (src/arm.rs) and RISC-V (src/riscv.rs) share this file.
+//! Prints a summary over semihosting and exits QEMU with status 0 if every case matches, 1
+//! otherwise (a panic exits with 1 too). Cortex-M (src/arm.rs) and RISC-V (src/riscv.rs)
+//! share this file.
 //!
 //! Tolerances (`max|a−b| / max(1, max|b|)` over the pose's 4×4 and, separately, the 6×6
 //! covariance): f64 ≤ 1e-12, f32 ≤ 1e-5 (the project's documented bounds, README
