@@ -12,7 +12,18 @@
 //! the cases. The cases: the seed robot (6 joints, from the golden file, with the seed
 //! example's covariances: three joints have a zero covariance) and a 7-joint arm with a
 //! full covariance on every joint, each in f32 and f64, tip (`right`) and base (`left`)
-//! frame.
+//! frame; and `seed_rank1/...`, the rank-one PPOE (`ChainView::ppoe_rank1`: one variance
+//! per joint along its screw axis) of the seed robot in the same state, with the seed
+//! example's variances (0.05 rad² on joints 1, 2, 3 and 5, none on 4 and 6), against the
+//! dense `seed/...` case:
+//!
+//! ```text
+//! for c in seed/f64/right seed_rank1/f64/right seed/f32/right seed_rank1/f32/right; do
+//!   PPOE_ICOUNT=$c PPOE_ICOUNT_REPS=1000 valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+//!     --collect-atstart=no --toggle-collect='*icount_region*' \
+//!     target/release/examples/ppoe_icount 2>&1 | grep 'Collected'
+//! done
+//! ```
 
 use ppoe::chain::{ChainView, Convention, Joint, JointKind};
 use ppoe::{se3, Mat6, Matrix, Real, Transform, Vec3};
@@ -76,6 +87,11 @@ fn seed_inputs<T: Real>() -> (Vec<T>, Vec<Mat6<T>>) {
         [-0.5, -0.5, -0.5, 0.0, -0.5, 0.0].map(T::lit).to_vec(),
         covs,
     )
+}
+
+/// The seed example's variances per joint value, rad² (the same joints as [`seed_inputs`]).
+fn seed_variances<T: Real>() -> Vec<T> {
+    [0.05, 0.05, 0.05, 0.0, 0.05, 0.0].map(T::lit).to_vec()
 }
 
 /// Joints, home pose, joint values and joint covariances of a chain.
@@ -148,6 +164,17 @@ fn cases<T: Real>(t: &str) -> Vec<Case> {
                 }),
             ));
         }
+        let (j, th, s2) = (sj.clone(), sth.clone(), seed_variances::<T>());
+        v.push((
+            format!("seed_rank1/{t}/{cname}"),
+            Box::new(move || {
+                let chain = ChainView {
+                    joints: &j,
+                    home: sh,
+                };
+                black_box(chain.ppoe_rank1(black_box(&th), black_box(&s2), conv)).ok();
+            }),
+        ));
     }
     v
 }

@@ -18,8 +18,11 @@
 # The firmware's build.rs generates the seed robot's tables (f32, f64) from
 # test_data/urdf/seed.urdf with ppoe-build and computes the expected PPOE results on the
 # host in f64; on the device the PPOE runs in f64 and f32 and is compared with them (f64
-# <= 1e-12, f32 <= 1e-5 relative). The firmware prints a summary over semihosting and exits
-# QEMU with a non-zero status on any mismatch or panic.
+# <= 1e-12, f32 <= 1e-5 relative). The rank-one PPOE (`ppoe_rank1`, one variance per joint
+# value) runs on the same joint values and is compared the same way with the host's dense
+# PPOE of the equivalent screw-noise covariances (examples/firmware/rank1_cases.rs; not in
+# the C firmware). The firmware prints a summary over semihosting and exits QEMU with a
+# non-zero status on any mismatch or panic.
 #
 # Every run is under `-icount shift=0`, where one guest instruction takes 1 ns: the mps2
 # SysTick (25 MHz on an386/an500, 20 MHz on an505) ticks every 40 (50) instructions and the
@@ -31,9 +34,10 @@
 # Checks after the runs:
 #   - soft vs hard float: the f32 results of thumbv7em-none-eabi and -eabihf (and of
 #     riscv32imac and -imafc) agree within 1e-5 (scripts/fw_budgets.py --compare-bits);
-#   - budgets: instructions per PPOE, PPOE-path code size and stack per target and scalar
-#     against firmware-budgets.toml (fail above budget x 1.10; scripts/fw_budgets.py); a
-#     Markdown table of the figures goes to $FIRMWARE_TARGET_DIR/firmware-figures.md;
+#   - budgets: instructions per PPOE, PPOE-path code size and stack per target and scalar,
+#     dense and rank-one, against firmware-budgets.toml (fail above budget x 1.10;
+#     scripts/fw_budgets.py); Markdown tables of the figures (and of rank-one vs dense, with
+#     the ratio) go to $FIRMWARE_TARGET_DIR/firmware-figures.md;
 #   - panic-freedom (M4F): the bin `panic_never` (feature panic-never) calls every public
 #     entry point of the core crate in f32 and f64; its panic handler references an undefined
 #     symbol, so the link fails if any panic path survives optimisation.
@@ -63,7 +67,7 @@ for a in "$@"; do
     --no-icount) ;;
     --no-panic-check) PANIC_CHECK=0 ;;
     --no-budgets) BUDGET_CHECK=0 ;;
-    -h|--help) sed -n '2,53p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,56p' "$0"; exit 0 ;;
     -*) echo "firmware: unknown option $a" >&2; exit 2 ;;
     *) LABELS+=("$a") ;;
   esac
@@ -119,7 +123,8 @@ command -v qemu-system-arm >/dev/null || { echo "firmware: qemu-system-arm missi
 
 # Host flags must not leak into the thumb builds (nor into build scripts built by Debian's rustc).
 unset RUSTFLAGS CARGO_ENCODED_RUSTFLAGS CARGO_BUILD_RUSTFLAGS CARGO_BUILD_TARGET RUSTDOCFLAGS
-TD=${FIRMWARE_TARGET_DIR:-$FW/target}
+# Absolute: the builds run in $FW, the runs and checks here.
+TD=$(realpath -m "${FIRMWARE_TARGET_DIR:-$FW/target}")
 BUILD_ENV=(
   RUSTC="$THUMB_RUSTC"
   RUSTC_BOOTSTRAP=1

@@ -10,12 +10,16 @@ For each run it reads from the log the instructions per 6-DOF PPOE call (counter
 PER_TICK, under `qemu -icount shift=0`) and the stack high-water of one call, and from the ELF the
 PPOE-path code size: the bytes of every function reachable by direct calls or branches from
 the firmware's `ppoe_seed_f32` / `ppoe_seed_f64` (llvm-objdump), so what a user's firmware
-links for one PPOE call, without the test harness.
+links for one PPOE call, without the test harness. The same three figures of the rank-one
+PPOE (`ppoe_rank1`, one variance per joint; log lines "per rank-1 PPOE call", roots
+`ppoe_seed_rank1_f32` / `_f64`) are the keys with `rank1_` after the kind.
 
 Every figure with a budget in BUDGETS.toml (table [LABEL], keys insns_f32, insns_f64,
-path_f32, path_f64, stack_f32, stack_f64) is printed against it; the exit status is 1 if any
-exceeds its budget by more than the file's `slack` (a fraction; 0.10), or if a budgeted
-figure is missing. Figures without a budget are printed as "no budget".
+path_f32, path_f64, stack_f32, stack_f64, and insns_rank1_f32 ... stack_rank1_f64) is printed
+against it; the exit status is 1 if any exceeds its budget by more than the file's `slack`
+(a fraction; 0.10), or if a budgeted figure is missing. Figures without a budget are printed
+as "no budget". The Markdown output has the figures table and a rank-one vs dense table
+(instructions and their ratio, code size, stack).
 
   fw_budgets.py --compare-bits LOG_A LOG_B TOL
       The f32 results of two runs of the same cases ("f32 bits" lines): max relative
@@ -29,7 +33,9 @@ import subprocess
 import sys
 import tomllib
 
-FIGURES = ("insns_f32", "insns_f64", "path_f32", "path_f64", "stack_f32", "stack_f64")
+DENSE = ("insns_f32", "insns_f64", "path_f32", "path_f64", "stack_f32", "stack_f64")
+RANK1 = tuple(k.replace("_", "_rank1_") for k in DENSE)
+FIGURES = DENSE + RANK1
 UNITS = {"insns": "insns", "path": "B", "stack": "B"}
 
 
@@ -112,23 +118,25 @@ def path_bytes(elf, root):
 def log_figures(log, per_tick):
     txt = open(log, errors="replace").read()
     out = {}
-    m = re.search(r"^(.+) per PPOE call: f32 (\d+) f64 (\d+)", txt, re.M)
-    if m and per_tick > 0:
-        out["insns_f32"] = int(m.group(2)) * per_tick
-        out["insns_f64"] = int(m.group(3)) * per_tick
-    m = re.search(r"^stack per PPOE call[^:]*: f32 (\d+) B, f64 (\d+) B", txt, re.M)
-    if m:
-        out["stack_f32"], out["stack_f64"] = int(m.group(1)), int(m.group(2))
+    for what, key in (("PPOE", ""), ("rank-1 PPOE", "rank1_")):
+        m = re.search(rf"^(.+) per {what} call: f32 (\d+) f64 (\d+)", txt, re.M)
+        if m and per_tick > 0:
+            out[f"insns_{key}f32"] = int(m.group(2)) * per_tick
+            out[f"insns_{key}f64"] = int(m.group(3)) * per_tick
+        m = re.search(rf"^stack per {what} call[^:]*: f32 (\d+) B, f64 (\d+) B", txt, re.M)
+        if m:
+            out[f"stack_{key}f32"], out[f"stack_{key}f64"] = int(m.group(1)), int(m.group(2))
     return out
 
 
 def run_figures(elf, log, per_tick):
     fig = log_figures(log, per_tick) if os.path.exists(log) else {}
     if os.path.exists(elf):
-        for t in ("f32", "f64"):
-            b = path_bytes(elf, "ppoe_seed_" + t)
-            if b is not None:
-                fig["path_" + t] = b
+        for key in ("", "rank1_"):
+            for t in ("f32", "f64"):
+                b = path_bytes(elf, f"ppoe_seed_{key}{t}")
+                if b is not None:
+                    fig[f"path_{key}{t}"] = b
     return fig
 
 
@@ -153,9 +161,35 @@ def check(budgets, runs):
             if val is None and lim is None:
                 continue
             shown = "-" if val is None else str(val)
-            print(f"  {label:<30} {key:<10} {shown:>9} {unit:<5} budget {lim if lim is not None else '-':>9}  {status}")
+            print(f"  {label:<30} {key:<16} {shown:>9} {unit:<5} budget {lim if lim is not None else '-':>9}  {status}")
             rows.append((label, key, val, lim))
     return failed, rows
+
+
+def ratio(fig, key):
+    """`rank-1 / dense` of figure `key` ("insns_f32", ...) as text, "n/a" if either is missing."""
+    a, b = fig.get(key.replace("_", "_rank1_")), fig.get(key)
+    return "n/a" if a is None or not b else f"{a / b:.2f}"
+
+
+def rank1_lines(runs):
+    """The rank-one vs dense table (targets with a rank-one figure only)."""
+    lines = [
+        "| target | f32 insns dense | f32 insns rank-1 | ratio | f64 insns dense | f64 insns rank-1"
+        " | ratio | f32 path B dense / rank-1 | f64 path B dense / rank-1 | f32 stack B dense / rank-1"
+        " | f64 stack B dense / rank-1 |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for label, fig in runs:
+        if not any(k in fig for k in RANK1):
+            continue
+        cell = lambda k: str(fig[k]) if k in fig else "n/a"
+        pair = lambda k: cell(k) + " / " + cell(k.replace("_", "_rank1_"))
+        cells = [cell("insns_f32"), cell("insns_rank1_f32"), ratio(fig, "insns_f32"),
+                 cell("insns_f64"), cell("insns_rank1_f64"), ratio(fig, "insns_f64"),
+                 pair("path_f32"), pair("path_f64"), pair("stack_f32"), pair("stack_f64")]
+        lines.append(f"| {label} | " + " | ".join(cells) + " |")
+    return lines
 
 
 def markdown(runs, budgets, out):
@@ -165,8 +199,11 @@ def markdown(runs, budgets, out):
     ]
     for label, fig in runs:
         desc = budgets.get(label, {}).get("describe", "")
-        cells = [str(fig[k]) if k in fig else "n/a" for k in FIGURES]
+        cells = [str(fig[k]) if k in fig else "n/a" for k in DENSE]
         lines.append(f"| {label} | {desc} | " + " | ".join(cells) + " |")
+    lines += ["", "Rank-one PPOE (`ppoe_rank1`, one variance per joint value) against the dense"
+              " PPOE, same joint values (firmware case 0); ratio = rank-1 / dense:", ""]
+    lines += rank1_lines(runs)
     with open(out + ".tmp", "w") as f:
         f.write("\n".join(lines) + "\n")
     os.replace(out + ".tmp", out)
@@ -221,6 +258,12 @@ def main(argv):
         runs.append((label, run_figures(elf, log, int(per_tick))))
     print(f"---- firmware budgets ({os.path.basename(argv[0])}; fail above budget x {1 + float(budgets.get('slack', 0.1)):.2f})")
     failed, _ = check(budgets, runs)
+    for label, fig in runs:
+        if "insns_rank1_f32" in fig or "insns_rank1_f64" in fig:
+            print(f"  {label:<30} rank-1 vs dense instructions: f32 {fig.get('insns_rank1_f32', '-')}"
+                  f" vs {fig.get('insns_f32', '-')} ({ratio(fig, 'insns_f32')}x),"
+                  f" f64 {fig.get('insns_rank1_f64', '-')} vs {fig.get('insns_f64', '-')}"
+                  f" ({ratio(fig, 'insns_f64')}x)")
     if md:
         markdown(runs, budgets, md)
     if js:

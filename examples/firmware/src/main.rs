@@ -1,7 +1,9 @@
-//! ppoe on a microcontroller core: the seed robot's PPOE in f64 and f32 against
-//! expectations computed on the host at build time (see build.rs). Prints a summary over
-//! semihosting and exits QEMU with status 0 if every case matches, 1 otherwise (a panic
-//! exits with 1 too). Cortex-M (src/arm.rs) and RISC-V (src/riscv.rs) share this file.
+//! ppoe on a microcontroller core: the seed robot's PPOE in f64 and f32, dense and rank-one
+//! (`ppoe_rank1`), against expectations computed on the host at build time (see build.rs;
+//! the rank-one cases are expected from the dense PPOE of their screw-noise covariances).
+//! Prints a summary over semihosting and exits QEMU with status 0 if every case matches, 1
+//! otherwise (a panic exits with 1 too). Cortex-M (src/arm.rs) and RISC-V (src/riscv.rs)
+//! share this file.
 //!
 //! Tolerances (`max|a−b| / max(1, max|b|)` over the pose's 4×4 and, separately, the 6×6
 //! covariance): f64 ≤ 1e-12, f32 ≤ 1e-5 (the project's documented bounds, README
@@ -41,6 +43,19 @@ pub struct Case {
 // EXPECTED: [Case; K]
 include!(concat!(env!("OUT_DIR"), "/expected.rs"));
 
+/// One rank-one case (a variance per joint value) and its expected PPOE (right convention):
+/// the dense PPOE of the covariances `σᵢ²·SᵢSᵢᵀ` on the host.
+pub struct Rank1Case {
+    name: &'static str,
+    thetas: [f64; 6],
+    sigma2: [f64; 6],
+    pose: [[f64; 4]; 4],
+    cov: [[f64; 6]; 6],
+}
+
+// EXPECTED_RANK1: [Rank1Case; K]
+include!(concat!(env!("OUT_DIR"), "/expected_rank1.rs"));
+
 const TOL_F64: f64 = 1e-12;
 const TOL_F32: f64 = 1e-5;
 
@@ -56,6 +71,20 @@ pub fn ppoe_seed_f64(thetas: &[f64; 6], covs: &[Mat6<f64>; 6]) -> UncertainPose<
 #[no_mangle]
 pub fn ppoe_seed_f32(thetas: &[f32; 6], covs: &[Mat6<f32>; 6]) -> UncertainPose<f32> {
     SEED_F32.ppoe(thetas, covs, Convention::Right)
+}
+
+/// The f64 rank-one PPOE as a symbol of its own (nm, instruction counts, code size).
+#[inline(never)]
+#[no_mangle]
+pub fn ppoe_seed_rank1_f64(thetas: &[f64; 6], sigma2: &[f64; 6]) -> UncertainPose<f64> {
+    SEED.ppoe_rank1(thetas, sigma2, Convention::Right)
+}
+
+/// The f32 rank-one PPOE as a symbol of its own (nm, instruction counts, code size).
+#[inline(never)]
+#[no_mangle]
+pub fn ppoe_seed_rank1_f32(thetas: &[f32; 6], sigma2: &[f32; 6]) -> UncertainPose<f32> {
+    SEED_F32.ppoe_rank1(thetas, sigma2, Convention::Right)
 }
 
 /// `se3::exp` in f64 / f32 as symbols of their own (instruction counts only).
@@ -170,9 +199,14 @@ fn to_f64<const R: usize, const C: usize>(m: &[[f32; C]; R]) -> [[f64; C]; R] {
     m.map(|row| row.map(f64::from))
 }
 
-/// Error of a result against a case: the worse of pose and covariance.
-fn case_err(pose: &[[f64; 4]; 4], cov: &[[f64; 6]; 6], c: &Case) -> f64 {
-    let (ep, ec) = (rel_err(pose, &c.pose), rel_err(cov, &c.cov));
+/// Error of a result (`pose`, `cov`) against an expectation (`want`): the worse of pose
+/// and covariance.
+fn case_err(
+    pose: &[[f64; 4]; 4],
+    cov: &[[f64; 6]; 6],
+    want: (&[[f64; 4]; 4], &[[f64; 6]; 6]),
+) -> f64 {
+    let (ep, ec) = (rel_err(pose, want.0), rel_err(cov, want.1));
     if ep > ec || ep.is_nan() {
         ep
     } else {
@@ -218,64 +252,110 @@ fn stack_used(f: impl FnOnce()) -> usize {
 /// One line with the bits of an f32 result (pose 4×4 then covariance 6×6, row-major, as
 /// hex words): scripts/firmware.sh compares these lines between the soft- and hard-float
 /// builds of the same core.
-fn print_f32_bits(name: &str, r: &UncertainPose<f32>) {
+fn print_f32_bits(prefix: &str, name: &str, r: &UncertainPose<f32>) {
     let mut words = [0u32; 52];
     let pose = r.pose.to_matrix4();
     let flat = pose.iter().flatten().chain(r.cov.0.iter().flatten());
     for (w, x) in words.iter_mut().zip(flat) {
         *w = x.to_bits();
     }
-    hprintln!("f32 bits {}: {:08x?}", name, words);
+    hprintln!("f32 bits {}{}: {:08x?}", prefix, name, words);
+}
+
+/// Pass count and worst errors (f64, f32) of a group of cases.
+#[derive(Default)]
+struct Tally {
+    passed: usize,
+    worst64: f64,
+    worst32: f64,
+}
+
+impl Tally {
+    /// Counts one case with errors `e64`, `e32` and prints its line.
+    fn add(&mut self, label: &str, name: &str, e64: f64, e32: f64) {
+        let ok = e64 <= TOL_F64 && e32 <= TOL_F32;
+        self.passed += usize::from(ok);
+        // `!(x <= worst)`: a NaN error becomes the worst.
+        if !(e64 <= self.worst64) {
+            self.worst64 = e64;
+        }
+        if !(e32 <= self.worst32) {
+            self.worst32 = e32;
+        }
+        hprintln!(
+            "  {}{:<8} f64 {:.2e}  f32 {:.2e}  {}",
+            label,
+            name,
+            e64,
+            e32,
+            if ok { "ok" } else { "MISMATCH" }
+        );
+    }
+}
+
+/// The dense PPOE of every case in f64 and f32 against its expectation.
+fn check_dense() -> Tally {
+    let mut t = Tally::default();
+    for c in EXPECTED.iter() {
+        // f64: the table SEED, inputs as they are.
+        let covs64: [Mat6<f64>; 6] = c.covs.map(Matrix);
+        let r64 = ppoe_seed_f64(black_box(&c.thetas), black_box(&covs64));
+        let e64 = case_err(&r64.pose.to_matrix4(), &r64.cov.0, (&c.pose, &c.cov));
+        // f32: the table SEED_F32, inputs converted to f32.
+        let th32 = c.thetas.map(|t| t as f32);
+        let covs32: [Mat6<f32>; 6] = c.covs.map(|m| Matrix(m.map(|r| r.map(|x| x as f32))));
+        let r32 = ppoe_seed_f32(black_box(&th32), black_box(&covs32));
+        let want = (&c.pose, &c.cov);
+        let e32 = case_err(&to_f64(&r32.pose.to_matrix4()), &to_f64(&r32.cov.0), want);
+        print_f32_bits("", c.name, &r32);
+        t.add("", c.name, e64, e32);
+    }
+    t
+}
+
+/// The rank-one PPOE of every rank-one case in f64 and f32 against its expectation.
+fn check_rank1() -> Tally {
+    let mut t = Tally::default();
+    for c in EXPECTED_RANK1.iter() {
+        let r64 = ppoe_seed_rank1_f64(black_box(&c.thetas), black_box(&c.sigma2));
+        let e64 = case_err(&r64.pose.to_matrix4(), &r64.cov.0, (&c.pose, &c.cov));
+        let (th32, s32) = (c.thetas.map(|t| t as f32), c.sigma2.map(|s| s as f32));
+        let r32 = ppoe_seed_rank1_f32(black_box(&th32), black_box(&s32));
+        let want = (&c.pose, &c.cov);
+        let e32 = case_err(&to_f64(&r32.pose.to_matrix4()), &to_f64(&r32.cov.0), want);
+        print_f32_bits("rank1_", c.name, &r32);
+        t.add("rank-1 ", c.name, e64, e32);
+    }
+    t
 }
 
 #[cfg_attr(target_arch = "arm", platform::entry)]
 #[cfg_attr(target_arch = "riscv32", export_name = "main")]
 fn main() -> ! {
     hprintln!(
-        "ppoe firmware: seed robot, {} cases, f64 and f32",
-        EXPECTED.len()
-    );
-    let (mut passed, mut worst64, mut worst32) = (0usize, 0.0f64, 0.0f64);
-    for c in EXPECTED.iter() {
-        // f64: the table SEED, inputs as they are.
-        let covs64: [Mat6<f64>; 6] = c.covs.map(Matrix);
-        let r64 = ppoe_seed_f64(black_box(&c.thetas), black_box(&covs64));
-        let e64 = case_err(&r64.pose.to_matrix4(), &r64.cov.0, c);
-        // f32: the table SEED_F32, inputs converted to f32.
-        let th32 = c.thetas.map(|t| t as f32);
-        let covs32: [Mat6<f32>; 6] = c.covs.map(|m| Matrix(m.map(|r| r.map(|x| x as f32))));
-        let r32 = ppoe_seed_f32(black_box(&th32), black_box(&covs32));
-        let e32 = case_err(&to_f64(&r32.pose.to_matrix4()), &to_f64(&r32.cov.0), c);
-        print_f32_bits(c.name, &r32);
-
-        let ok = e64 <= TOL_F64 && e32 <= TOL_F32;
-        passed += usize::from(ok);
-        if !(e64 <= worst64) {
-            worst64 = e64;
-        }
-        if !(e32 <= worst32) {
-            worst32 = e32;
-        }
-        hprintln!(
-            "  {:<8} f64 {:.2e}  f32 {:.2e}  {}",
-            c.name,
-            e64,
-            e32,
-            if ok { "ok" } else { "MISMATCH" }
-        );
-    }
-    let all = passed == EXPECTED.len();
-    hprintln!(
-        "summary: {}/{} cases passed; worst rel. error f64 {:.2e} (tol {:.0e}), f32 {:.2e} (tol {:.0e})",
-        passed,
+        "ppoe firmware: seed robot, {} cases, f64 and f32; {} rank-one cases",
         EXPECTED.len(),
-        worst64,
+        EXPECTED_RANK1.len()
+    );
+    let dense = check_dense();
+    let rank1 = check_rank1();
+    let all = dense.passed == EXPECTED.len() && rank1.passed == EXPECTED_RANK1.len();
+    hprintln!(
+        "summary: {}/{} cases passed, rank-1 {}/{}; worst rel. error f64 {:.2e}, rank-1 {:.2e} (tol {:.0e}), f32 {:.2e}, rank-1 {:.2e} (tol {:.0e})",
+        dense.passed,
+        EXPECTED.len(),
+        rank1.passed,
+        EXPECTED_RANK1.len(),
+        dense.worst64,
+        rank1.worst64,
         TOL_F64,
-        worst32,
+        dense.worst32,
+        rank1.worst32,
         TOL_F32
     );
 
     measure(&EXPECTED[0]);
+    measure_rank1(&EXPECTED_RANK1[0]);
     hprintln!("RESULT: {}", if all { "PASS" } else { "FAIL" });
     platform::exit(all)
 }
@@ -329,5 +409,41 @@ fn measure(c: &Case) {
         "stack per PPOE call (high-water below the caller, inputs excluded): f32 {} B, f64 {} B",
         s32,
         s64
+    );
+}
+
+/// Prints the cost of one rank-one PPOE call on case `c` (instructions: meaningful under
+/// -icount shift=0 only, see [`ticks_per_call`]) and its stack, like [`measure`].
+fn measure_rank1(c: &Rank1Case) {
+    let (th32, s32) = (c.thetas.map(|t| t as f32), c.sigma2.map(|s| s as f32));
+    let t32 = ticks_per_call(16, || {
+        black_box(ppoe_seed_rank1_f32(black_box(&th32), black_box(&s32)));
+    });
+    let t64 = ticks_per_call(4, || {
+        black_box(ppoe_seed_rank1_f64(
+            black_box(&c.thetas),
+            black_box(&c.sigma2),
+        ));
+    });
+    hprintln!(
+        "{} per rank-1 PPOE call: f32 {} f64 {} (x{} = instructions, as for the PPOE)",
+        platform::COUNTER,
+        t32,
+        t64,
+        platform::INSNS_PER_TICK
+    );
+    let k32 = stack_used(|| {
+        black_box(ppoe_seed_rank1_f32(black_box(&th32), black_box(&s32)));
+    });
+    let k64 = stack_used(|| {
+        black_box(ppoe_seed_rank1_f64(
+            black_box(&c.thetas),
+            black_box(&c.sigma2),
+        ));
+    });
+    hprintln!(
+        "stack per rank-1 PPOE call (as for the PPOE): f32 {} B, f64 {} B",
+        k32,
+        k64
     );
 }

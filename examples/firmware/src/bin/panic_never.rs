@@ -2,13 +2,14 @@
 //! `panic-never` crate).
 //!
 //! This firmware calls every public function and method of `so3`, `se3`, `uncertainty`,
-//! `ellipsoid` (eigen-decomposition, ellipsoids, surface points) and `chain` (the compile-time
-//! [`Chain`] and the slice view), in f32 and f64, on opaque inputs (`black_box`: the
-//! optimiser may assume nothing about values, slice lengths or enum variants). Its panic
-//! handler calls a function that does not exist, so the link fails ("undefined symbol:
-//! ppoe_panic_path_survived_optimisation") if any panic path of these functions survives
-//! optimisation (release profile: opt-level 3, LTO). Built only with `--features
-//! panic-never` (scripts/firmware.sh does it for the M4F); running it exits QEMU with 0.
+//! `ellipsoid` (eigen-decomposition, ellipsoids, surface points), `chain` (the compile-time
+//! [`Chain`] and the slice view) and `rank1` (the rank-one PPOE), in f32 and f64, on opaque
+//! inputs (`black_box`: the optimiser may assume nothing about values, slice lengths or
+//! enum variants). Its panic handler calls a function that does not exist, so the link
+//! fails ("undefined symbol: ppoe_panic_path_survived_optimisation") if any panic path of
+//! these functions survives optimisation (release profile: opt-level 3, LTO). Built only
+//! with `--features panic-never` (scripts/firmware.sh does it for the M4F); running it
+//! exits QEMU with 0.
 //!
 //! Not proven: the surface grids (`to_projected_ellipsoid*`, `lift_surface`,
 //! `marginal_surface`, `surface_grid`, `LiftSurface::grid`): their bounds checks survive
@@ -23,6 +24,7 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::debug;
 use ppoe::chain::{self, Chain, ChainView, Convention, Joint, JointConstants};
 use ppoe::linalg::SymmetricEigen;
+use ppoe::rank1;
 use ppoe::surface::{self, LiftSurface, Surface};
 use ppoe::uncertainty::{self, IterationOptions, Order};
 use ppoe::{se3, so3, Mat3, Mat6, Matrix, Real, Transform, Vec3, Vec6, Vector};
@@ -206,6 +208,10 @@ fn chains<T: Real>(seed: &Chain<T, 6>) {
     sink(seed.ppoe(&th, &covs, conv));
     sink(seed.ppoe_checked(&th, &covs, conv));
     sink(seed.ppoe_fourth_order(&th, &covs, conv));
+    let s2: [T; 6] = bb([1e-4, 0.0, 4e-4, 1e-3, 2e-4, 0.05].map(T::lit));
+    sink(seed.ppoe_rank1(&th, &s2, conv));
+    sink(seed.ppoe_rank1_checked(&th, &s2, conv));
+    sink(rank1::dense_covariances(seed, &s2));
     // The slice view with opaque lengths.
     let view: ChainView<'_, T> = bb(seed.as_ref());
     let ths: &[T] = bb(&th);
@@ -220,6 +226,9 @@ fn chains<T: Real>(seed: &Chain<T, 6>) {
     sink(view.ppoe(ths, cs, conv));
     sink(view.ppoe_checked(ths, cs, conv));
     sink(view.ppoe_fourth_order(ths, cs, conv));
+    let s2s: &[T] = bb(&s2);
+    sink(view.ppoe_rank1(ths, s2s, conv));
+    sink(view.ppoe_rank1_checked(ths, s2s, conv));
     sink(chain::screw_noise(&j.screw, bb(T::HALF)));
     sink(chain::bending_noise(&v3::<T>(), &m3()));
     sink(Matrix::<T, 6, 6>::identity().cholesky());
