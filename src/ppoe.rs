@@ -84,6 +84,7 @@ impl<'a, T: Real> ChainView<'a, T> {
         }
         // The lane count is a constant of T and the target: only one arm is compiled in.
         Ok(match const { lanes::<T>() } {
+            4 => ppoe_lanes::<T, 4>(self, thetas, covs, convention),
             2 => ppoe_lanes::<T, 2>(self, thetas, covs, convention),
             _ => ppoe_lanes::<T, 1>(self, thetas, covs, convention),
         })

@@ -6,11 +6,17 @@
 //! transported covariances is only formed at the end), so W of them can run as one
 //! computation on [`Pack`]s of W scalars, which the optimiser maps to SIMD registers
 //! where the target has them (SSE2, NEON, wasm simd128): no shuffle is needed inside a
-//! transport. [`lanes`] chooses W per scalar and target: 2 where the target has 128-bit
-//! vectors, else 1 (Cortex-M: a scalar FPU, where lanes would only add register
-//! pressure). f32 uses 2 lanes too, not the 4 a register holds: gathering four
-//! transports' values into lanes, and four joints' work in flight, cost more than the
-//! halved arithmetic saved, on every chain measured (BENCHMARKS.md).
+//! transport. [`lanes`] chooses W per scalar and target: as many as fill one 128-bit
+//! vector where the target has them (f64: 2, f32: 4), else 1 (Cortex-M: a scalar FPU,
+//! where lanes would only add register pressure).
+//!
+//! Why f32 fills the whole register: two f32 lanes are computed in 4-lane registers
+//! whose other two lanes the program leaves undefined (leftovers of earlier code). On a
+//! core with a slow path for subnormals, the two-lane f32 PPOE ran 1.2-1.3x slower than
+//! f64, and 0.9x with flush-to-zero set; the one- and four-lane schedules, whose lanes
+//! hold the same values as the two defined lanes, ran at full speed. So the subnormals
+//! are in the undefined lanes (f32's narrow range underflows where f64's does not). Four
+//! lanes leave no lane undefined (`benches/lanes_ratio.rs` measures the ratios).
 //!
 //! Why groups are built as locals: the joints go in groups of W, and each group's W
 //! congruences and covariances are built as local values, then gathered into lanes
@@ -21,8 +27,11 @@
 //!
 //! Why a one-lane tail: when the joint count is not a multiple of W, the last group's
 //! joints are transported one lane at a time (the code path of the one-lane targets)
-//! rather than in W lanes with zero covariances padding the empty ones: a padded lane
-//! costs a whole transport, and its result is zero.
+//! rather than in W lanes with zero covariances padding the empty ones: with two lanes
+//! a padded lane costs a whole transport, and its result is zero. With four lanes one
+//! packed transport costs fewer instructions than three scalar ones (a 7-joint f32 chain
+//! 5228 instead of 5579 per PPOE under callgrind) but more than two, so a last group
+//! more than half full runs in all W lanes, its empty lanes zero (exactly zero results).
 //!
 //! Why joints with a zero covariance are skipped: fixed or noiseless joints are common,
 //! and their transport adds exactly zero; the check (a scan that stops at the first
@@ -56,11 +65,11 @@ const SIMD128: bool = cfg!(any(
 ));
 
 /// How many transports the PPOE computes side by side for scalar `T` on this target (see
-/// the module doc): 2 with 128-bit SIMD, for f32 and f64 alike, else 1.
+/// the module doc): as many as fill one 128-bit SIMD register (f32: 4, f64: 2), else 1.
 pub(crate) const fn lanes<T: Real>() -> usize {
-    // Keyed on the scalar's size so that a per-precision choice stays a one-line change.
     match core::mem::size_of::<T>() {
-        4 | 8 if SIMD128 => 2,
+        4 if SIMD128 => 4,
+        8 if SIMD128 => 2,
         _ => 1,
     }
 }
@@ -68,7 +77,8 @@ pub(crate) const fn lanes<T: Real>() -> usize {
 /// The PPOE of `chain` after the length check, W transports at a time: the joints go in
 /// groups of W, each group's W congruences and covariances are built as locals and
 /// transported in the W lanes together; a last group of fewer than W joints is
-/// transported one lane at a time (no padded lanes).
+/// transported one lane at a time unless it fills more than half of W > 2 lanes (see
+/// [`Sums::add`]).
 #[inline(always)]
 pub(crate) fn ppoe_lanes<T: Real, const W: usize>(
     chain: &ChainView<'_, T>,
@@ -113,11 +123,12 @@ struct Sums<T, const W: usize> {
 }
 
 impl<T: Real, const W: usize> Sums<T, W> {
-    /// Adds the transports of `group`'s first `filled` entries: all W in lanes together,
-    /// fewer one lane at a time.
+    /// Adds the transports of `group`'s first `filled` entries: in lanes together when
+    /// all W are filled or, with more than two lanes, more than half of them (the empty
+    /// slots hold zero congruences and covariances); else one lane at a time.
     #[inline(always)]
     fn add(&mut self, group: &[(Congruence<T>, &Mat6<T>); W], filled: usize) {
-        if filled == W {
+        if filled == W || (W > 2 && 2 * filled > W) {
             Congruence::add_lower_packed(group, &mut self.lanes);
         } else if W > 1 {
             for (c, cov) in group.iter().take(filled) {
