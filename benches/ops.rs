@@ -9,7 +9,7 @@ mod export;
 mod robots;
 
 use criterion::{criterion_group, BenchmarkId, Criterion};
-use ppoe::chain::{ChainView, Convention, Joint, JointKind};
+use ppoe::chain::{ChainView, Convention, Joint, JointKind, UncertainPose};
 use ppoe::surface::{self, Surface};
 use ppoe::uncertainty::{self, IterationOptions, Order};
 use ppoe::{se3, so3, Mat6, Matrix, Real, Transform, Vec3, Vector};
@@ -475,6 +475,49 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
     v.push(op(format!("ppoe_seed/nalgebra/{t}"), move || {
         baseline_nalgebra::ppoe(&na, black_box(&thetas), &na_covs)
     }));
+    v.extend(arm7_callgrind_ops::<T>());
+    v.extend(chain_callgrind_ops::<T>());
+    v.extend(surface_callgrind_ops(tip));
+    v
+}
+
+/// The surface ops for the callgrind mode (the same inputs as the `surface_*` benches).
+fn surface_callgrind_ops<T: Real>(tip: UncertainPose<T>) -> Vec<Op> {
+    let t = ty::<T>();
+    let mut v = Vec::new();
+    for n in [20usize, 50] {
+        for (name, s) in [
+            ("lift", Surface::Lift),
+            ("pytransform3d", Surface::Pytransform3d),
+        ] {
+            let mut buf = vec![Vec3::<T>::zeros(); 2500];
+            v.push(op(format!("surface_{name}_n{n}/{t}"), move || {
+                surface::surface_grid(s, black_box(&tip.pose), &tip.cov, T::ONE, n, &mut buf)
+                    .is_ok()
+            }));
+        }
+    }
+    v
+}
+
+/// The synthetic chains' ops for the callgrind mode (the same inputs as `ppoe_chain`).
+fn chain_callgrind_ops<T: Real>() -> Vec<Op> {
+    let t = ty::<T>();
+    let mut v = Vec::new();
+    for n in [1usize, 2, 4, 8, 16, 32] {
+        let (js, home, th, cv) = synthetic::<T>(n);
+        v.push(op(format!("ppoe_chain/{t}/{n}"), move || {
+            let ch = ChainView { joints: &js, home };
+            ch.ppoe(black_box(&th), &cv, Convention::Right)
+        }));
+    }
+    v
+}
+
+/// The 7-joint arm's ops for the callgrind mode (the same inputs as `arm7_ops`).
+fn arm7_callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
+    let t = ty::<T>();
+    let mut v = Vec::new();
     let (aj, ah) = robots::core_chain::<T>(&robots::robot_chain(&robots::ARM7));
     let (ath, acov) = (robots::arm7_thetas::<T>(), robots::arm7_covs::<T>(aj.len()));
     let (ana, ana_covs) = nalgebra_inputs(&aj, ah, &acov);
@@ -497,25 +540,6 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
         };
         chain.forward_kinematics(black_box(&ath))
     }));
-    for n in [1usize, 2, 4, 8, 16, 32] {
-        let (js, home, th, cv) = synthetic::<T>(n);
-        v.push(op(format!("ppoe_chain/{t}/{n}"), move || {
-            let ch = ChainView { joints: &js, home };
-            ch.ppoe(black_box(&th), &cv, Convention::Right)
-        }));
-    }
-    for n in [20usize, 50] {
-        for (name, s) in [
-            ("lift", Surface::Lift),
-            ("pytransform3d", Surface::Pytransform3d),
-        ] {
-            let mut buf = vec![Vec3::<T>::zeros(); 2500];
-            v.push(op(format!("surface_{name}_n{n}/{t}"), move || {
-                surface::surface_grid(s, black_box(&tip.pose), &tip.cov, T::ONE, n, &mut buf)
-                    .is_ok()
-            }));
-        }
-    }
     v
 }
 

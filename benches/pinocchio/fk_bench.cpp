@@ -6,7 +6,8 @@
 // For each robot: the model is built joint by joint (RX/RY/RZ or RevoluteUnaligned with
 // the exported placements), the tip pose oMi[n]·tip of every test configuration is
 // compared with ppoe's (exit status 1 if any element differs by more than 1e-12), then
-// BATCHES batches of CALLS calls on the first configuration are timed; one line per robot:
+// BATCHES batches of CALLS calls on the first configuration are timed (arguments 1 and 2;
+// argument 3, if given, names the only robot to run); one line per robot:
 //   pinocchio robot=<name> joints=<n> ns_per_call=<median> min_ns=<f> batches=<b>
 //   calls=<c> max_abs_err=<e>
 #include <pinocchio/multibody.hpp>
@@ -77,8 +78,10 @@ double median(std::vector<double> v) {
 int main(int argc, char** argv) {
   const int batches = argc > 1 ? std::atoi(argv[1]) : 31;
   const int calls = argc > 2 ? std::atoi(argv[2]) : 20000;
+  const std::string only = argc > 3 ? argv[3] : "";
   int status = 0;
   for (const RobotTable& t : kRobots) {
+    if (!only.empty() && only != t.name) continue;
     const pinocchio::Model model = build(t);
     pinocchio::Data data(model);
     const double err = check(t, model, data);
