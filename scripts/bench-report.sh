@@ -113,7 +113,11 @@ pinocchio_step() {
     -Wl,-rpath,"$prefix/lib" >"$OUT/pinocchio/build.log" 2>&1 ||
     { echo "g++ failed (log: $OUT/pinocchio/build.log)"; return 2; }
   echo "versions pin=$("$PIN_VENV/bin/python" -c 'import pinocchio; print(pinocchio.__version__)' 2>/dev/null) gxx=$(g++ -dumpfullversion)"
-  "$OUT/pinocchio/fk_bench" 101 20000
+  "$OUT/pinocchio/fk_bench" 101 20000 || return
+  if [ $CALLGRIND = 1 ] && command -v valgrind >/dev/null; then
+    python3 scripts/bench_report.py pinocchio-ir "$OUT/pinocchio/fk_bench" ||
+      echo "pinocchio_ir: callgrind of the harness failed (no instruction counts)"
+  fi
 }
 if [ $PINOCCHIO = 1 ]; then
   echo "---- Pinocchio ($PIN_VENV)"

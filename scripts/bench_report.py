@@ -7,6 +7,7 @@
                                               pytransform3d.json, flops.json, callgrind.json,
                                               firmware.json, pinocchio.txt, fit_bench.txt,
                                               firmware_targets.md (kept as it is)
+  bench_report.py pinocchio-ir FK_BENCH        Pinocchio FK instructions per call (valgrind)
   bench_report.py selftest                    the line parsers on made-up lines
 """
 
@@ -43,6 +44,24 @@ def callgrind_ir(bin_, op, reps):
                 break
     os.remove(out)
     return ir
+
+
+def cmd_pinocchio_ir(fk_bench):
+    """Instructions per forwardKinematics call of each robot: two whole-program runs of the
+    harness (1000 and 21000 calls of one batch) under callgrind, the difference / 20000, so
+    that model building and the check cancel out."""
+    for robot in ("seed", "arm7"):
+        tot = []
+        for calls in (1000, 21000):
+            out = "/tmp/ppoe-bench-pin-callgrind.%d.out" % os.getpid()
+            subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out,
+                            fk_bench, "1", str(calls), robot],
+                           check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            with open(out) as f:
+                tot.append(next(int(l.split()[1]) for l in f
+                                if l.startswith("summary:") or l.startswith("totals:")))
+            os.remove(out)
+        print("pinocchio_ir robot=%s ir_per_call=%.0f" % (robot, (tot[1] - tot[0]) / 20000))
 
 
 def cmd_callgrind(bin_, out):
@@ -250,9 +269,11 @@ def pinocchio_ns(pin_text):
     return {r["robot"]: float(r["ns_per_call"]) for r in kv_lines(pin_text, "pinocchio")}
 
 
-def render_robots(crit, pin_text):
-    """Seed and 7-joint arm: ppoe PPOE/FK, the nalgebra port, Pinocchio's FK (ns per call)."""
+def render_robots(crit, pin_text, ir):
+    """Seed and 7-joint arm: ppoe PPOE/FK, the nalgebra port, Pinocchio's FK (ns per call),
+    and their instruction counts where callgrind ran."""
     pin = pinocchio_ns(pin_text)
+    pin_ir = {r["robot"]: float(r["ir_per_call"]) for r in kv_lines(pin_text, "pinocchio_ir")}
     err = step_error(pin_text)
     ver = (kv_lines(pin_text, "versions") or [{}])[0]
     L = ["## Seed robot (6 joints) and 7-joint arm: ppoe, the nalgebra port and Pinocchio", ""]
@@ -275,7 +296,8 @@ def render_robots(crit, pin_text):
         L.append("Pinocchio %s (pip package `pin`), `pinocchio::forwardKinematics(model, data, q)` in C++"
                  " (benches/pinocchio/fk_bench.cpp, g++ %s `-O3`, default target like our build,"
                  " header-only so the call is compiled with these flags). The model is built joint by"
-                 " joint (RX/RY/RZ; frames with a negative axis turned by π so the axis is positive)"
+                 " joint (RX/RY/RZ where the axis is a coordinate axis, a frame with a negative one turned"
+                 " by π, RevoluteUnaligned otherwise)"
                  " from the chain ppoe-build extracts, because urdfdom rejects the seed URDF; before"
                  " timing, its tip pose `oMi[n]·tip` is checked against ppoe's forward kinematics on 3"
                  " configurations per robot (largest element difference: %s). Same configuration as"
@@ -286,6 +308,19 @@ def render_robots(crit, pin_text):
     else:
         L.append("Pinocchio: not measured (%s)." % (err or "no result lines"))
     L.append("")
+    if ir:
+        L.append("Instructions per call, f64 (callgrind; Pinocchio: whole runs of the harness with 1000 and")
+        L.append("21000 calls, the difference / 20000):")
+        L.append("")
+        L.append("| robot | ppoe PPOE | ppoe FK | nalgebra port PPOE | Pinocchio FK | ppoe PPOE / Pinocchio FK |")
+        L.append("|---|---:|---:|---:|---:|---:|")
+        for robot, key, pkey in (("seed", "seed", "seed"), ("7-joint arm", "7dof", "arm7")):
+            a = ir.get("ppoe_%s/ours/f64" % key)
+            n0 = lambda v: "—" if v is None else "%.0f" % v
+            L.append("| %s | %s | %s | %s | %s | %s |" % (
+                robot, n0(a), n0(ir.get("fk_%s/ours/f64" % key)),
+                n0(ir.get("ppoe_%s/nalgebra/f64" % key)), n0(pin_ir.get(pkey)), ratio(a, pin_ir.get(pkey))))
+        L.append("")
     return L
 
 
@@ -438,7 +473,7 @@ def render(d):
     p("")
     p("f32 / f64 time ratio of the PPOE: %s (below 1 means f32 is faster)." % ratio(s32, s64))
     p("")
-    L.extend(render_robots(crit, pin_text))
+    L.extend(render_robots(crit, pin_text, (cg or {}).get("ir_per_call", {})))
     L.extend(render_rank1(crit))
     L.extend(render_fit(fit_text).splitlines())
     # ---- chains
@@ -742,6 +777,8 @@ def main():
         cmd_firmware(sys.argv[2], sys.argv[3])
     elif cmd == "render":
         sys.stdout.write(render(sys.argv[2]))
+    elif cmd == "pinocchio-ir":
+        cmd_pinocchio_ir(sys.argv[2])
     elif cmd == "selftest":
         selftest()
     else:
