@@ -45,7 +45,7 @@ while [ $# -gt 0 ]; do
     --no-fit) FIT=0 ;;
     --criterion-args) CRIT_ARGS=$2; shift ;;
     --firmware-args) FW_ARGS=$2; shift ;;
-    -h|--help) sed -n '2,36p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,33p' "$0"; exit 0 ;;
     *) echo "bench-report: unknown argument $1" >&2; exit 2 ;;
   esac
   shift
