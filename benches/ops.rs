@@ -3,9 +3,13 @@
 //! BENCHMARKS.md.
 
 mod baseline_nalgebra;
+#[path = "pinocchio/export.rs"]
+mod export;
+#[path = "pinocchio/robots.rs"]
+mod robots;
 
 use criterion::{criterion_group, BenchmarkId, Criterion};
-use ppoe::chain::{ChainView, Convention, Joint, JointKind};
+use ppoe::chain::{ChainView, Convention, Joint, JointKind, UncertainPose};
 use ppoe::surface::{self, Surface};
 use ppoe::uncertainty::{self, IterationOptions, Order};
 use ppoe::{se3, so3, Mat6, Matrix, Real, Transform, Vec3, Vector};
@@ -252,26 +256,12 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     });
     // The nalgebra baseline, checked to give the same numbers first.
     let (na, na_covs) = nalgebra_inputs(&joints, home, &covs);
-    let (na_pose, na_cov) = baseline_nalgebra::ppoe(&na, &thetas, &na_covs);
-    let ours = chain.ppoe(&thetas, &covs, Convention::Right).unwrap();
-    let tol = T::EPS * T::lit(1e3);
-    for i in 0..6 {
-        for j in 0..6 {
-            assert!(
-                num_traits_abs(na_cov[(i, j)] - ours.cov.0[i][j]) <= tol,
-                "nalgebra baseline disagrees"
-            );
-        }
-    }
-    for i in 0..3 {
-        assert!(
-            num_traits_abs(na_pose[(i, 3)] - ours.pose.translation.0[i]) <= tol,
-            "nalgebra baseline disagrees"
-        );
-    }
+    check_nalgebra(&chain, &na, &thetas, &covs, &na_covs);
     c.bench_function(&format!("ppoe_seed/nalgebra/{t}"), |b| {
         b.iter(|| baseline_nalgebra::ppoe(&na, black_box(&thetas), &na_covs))
     });
+
+    arm7_ops::<T>(c);
 
     let mut group = c.benchmark_group(format!("ppoe_chain/{t}"));
     for n in [1usize, 2, 4, 8, 16, 32] {
@@ -283,7 +273,7 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     }
     group.finish();
 
-    let tip = ours;
+    let tip = chain.ppoe(&thetas, &covs, Convention::Right).unwrap();
     let mut buf = vec![Vec3::<T>::zeros(); 2500];
     for n in [20usize, 50] {
         for (name, s) in [
@@ -298,6 +288,70 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
         }
     }
     let _ = Matrix::<T, 1, 1>::zeros();
+}
+
+/// Panics unless the nalgebra port gives ppoe's pose and covariance (within 1000 ε).
+fn check_nalgebra<T: Real + nalgebra::RealField>(
+    chain: &ChainView<'_, T>,
+    na: &baseline_nalgebra::NaChain<T>,
+    thetas: &[T],
+    covs: &[Mat6<T>],
+    na_covs: &[nalgebra::Matrix6<T>],
+) {
+    let (na_pose, na_cov) = baseline_nalgebra::ppoe(na, thetas, na_covs);
+    let ours = chain.ppoe(thetas, covs, Convention::Right).unwrap();
+    // Relative to the largest entry: an absolute 1000 ε would pass any f32 covariance of
+    // the 7-joint arm, whose entries are ~1e-6.
+    let scale = ours.cov.0.iter().flatten().fold(T::ZERO, |a, &x| {
+        let y = num_traits_abs(x);
+        if y > a {
+            y
+        } else {
+            a
+        }
+    });
+    let tol = T::EPS * T::lit(1e3);
+    let m = ours.pose.to_matrix4();
+    for i in 0..6 {
+        for j in 0..6 {
+            assert!(
+                num_traits_abs(na_cov[(i, j)] - ours.cov.0[i][j]) <= tol * scale,
+                "nalgebra baseline disagrees (covariance)"
+            );
+        }
+    }
+    for i in 0..3 {
+        for j in 0..4 {
+            assert!(
+                num_traits_abs(na_pose[(i, j)] - m[i][j]) <= tol,
+                "nalgebra baseline disagrees (pose)"
+            );
+        }
+    }
+}
+
+/// The 7-joint arm of test_data/urdf/arm7.urdf (full-rank joint covariances): ppoe, the
+/// nalgebra port and the rigid forward kinematics.
+fn arm7_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
+    let t = ty::<T>();
+    let (joints, home) = robots::core_chain::<T>(&robots::robot_chain(&robots::ARM7));
+    let chain = ChainView {
+        joints: &joints,
+        home,
+    };
+    let thetas = robots::arm7_thetas::<T>();
+    let covs = robots::arm7_covs::<T>(joints.len());
+    let (na, na_covs) = nalgebra_inputs(&joints, home, &covs);
+    check_nalgebra(&chain, &na, &thetas, &covs, &na_covs);
+    c.bench_function(&format!("ppoe_7dof/ours/{t}"), |b| {
+        b.iter(|| chain.ppoe(black_box(&thetas), &covs, Convention::Right))
+    });
+    c.bench_function(&format!("ppoe_7dof/nalgebra/{t}"), |b| {
+        b.iter(|| baseline_nalgebra::ppoe(&na, black_box(&thetas), &na_covs))
+    });
+    c.bench_function(&format!("fk_7dof/ours/{t}"), |b| {
+        b.iter(|| chain.forward_kinematics(black_box(&thetas)))
+    });
 }
 
 fn all(c: &mut Criterion) {
@@ -421,13 +475,16 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
     v.push(op(format!("ppoe_seed/nalgebra/{t}"), move || {
         baseline_nalgebra::ppoe(&na, black_box(&thetas), &na_covs)
     }));
-    for n in [1usize, 2, 4, 8, 16, 32] {
-        let (js, home, th, cv) = synthetic::<T>(n);
-        v.push(op(format!("ppoe_chain/{t}/{n}"), move || {
-            let ch = ChainView { joints: &js, home };
-            ch.ppoe(black_box(&th), &cv, Convention::Right)
-        }));
-    }
+    v.extend(arm7_callgrind_ops::<T>());
+    v.extend(chain_callgrind_ops::<T>());
+    v.extend(surface_callgrind_ops(tip));
+    v
+}
+
+/// The surface ops for the callgrind mode (the same inputs as the `surface_*` benches).
+fn surface_callgrind_ops<T: Real>(tip: UncertainPose<T>) -> Vec<Op> {
+    let t = ty::<T>();
+    let mut v = Vec::new();
     for n in [20usize, 50] {
         for (name, s) in [
             ("lift", Surface::Lift),
@@ -440,6 +497,49 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
             }));
         }
     }
+    v
+}
+
+/// The synthetic chains' ops for the callgrind mode (the same inputs as `ppoe_chain`).
+fn chain_callgrind_ops<T: Real>() -> Vec<Op> {
+    let t = ty::<T>();
+    let mut v = Vec::new();
+    for n in [1usize, 2, 4, 8, 16, 32] {
+        let (js, home, th, cv) = synthetic::<T>(n);
+        v.push(op(format!("ppoe_chain/{t}/{n}"), move || {
+            let ch = ChainView { joints: &js, home };
+            ch.ppoe(black_box(&th), &cv, Convention::Right)
+        }));
+    }
+    v
+}
+
+/// The 7-joint arm's ops for the callgrind mode (the same inputs as `arm7_ops`).
+fn arm7_callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
+    let t = ty::<T>();
+    let mut v = Vec::new();
+    let (aj, ah) = robots::core_chain::<T>(&robots::robot_chain(&robots::ARM7));
+    let (ath, acov) = (robots::arm7_thetas::<T>(), robots::arm7_covs::<T>(aj.len()));
+    let (ana, ana_covs) = nalgebra_inputs(&aj, ah, &acov);
+    let (aj1, ath1, acov1) = (aj.clone(), ath.clone(), acov.clone());
+    v.push(op(format!("ppoe_7dof/ours/{t}"), move || {
+        let chain = ChainView {
+            joints: &aj1,
+            home: ah,
+        };
+        chain.ppoe(black_box(&ath1), &acov1, Convention::Right)
+    }));
+    let ath2 = ath.clone();
+    v.push(op(format!("ppoe_7dof/nalgebra/{t}"), move || {
+        baseline_nalgebra::ppoe(&ana, black_box(&ath2), &ana_covs)
+    }));
+    v.push(op(format!("fk_7dof/ours/{t}"), move || {
+        let chain = ChainView {
+            joints: &aj,
+            home: ah,
+        };
+        chain.forward_kinematics(black_box(&ath))
+    }));
     v
 }
 
@@ -472,6 +572,11 @@ fn callgrind_mode() -> bool {
 criterion_group!(benches, all);
 
 fn main() {
+    // `PPOE_PINOCCHIO_EXPORT=DIR`: write DIR/robots.hpp for benches/pinocchio/fk_bench.cpp.
+    if let Ok(dir) = std::env::var("PPOE_PINOCCHIO_EXPORT") {
+        export::write_header(&dir);
+        return;
+    }
     if callgrind_mode() {
         return;
     }

@@ -1,6 +1,10 @@
 //! The rank-one PPOE (`ppoe_rank1`, one variance per joint along its screw axis) against
 //! the dense PPOE with the same covariances (`screw_noise`), f64 and f32, on the seed robot
-//! (6 joints, from the oracle's golden file) and on a 7-joint arm built from it.
+//! (6 joints, from the oracle's golden file) and on the 7-joint arm of
+//! test_data/urdf/arm7.urdf.
+
+#[path = "pinocchio/robots.rs"]
+mod robots;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use ppoe::chain::{screw_noise, ChainView, Convention, Joint, JointKind};
@@ -74,17 +78,9 @@ fn bench_chain<T: Real>(c: &mut Criterion, label: &str, joints: &[Joint<T>], hom
 fn benches<T: Real>(c: &mut Criterion) {
     let (joints, home) = seed_chain::<T>();
     bench_chain(c, "seed", &joints, home);
-    // 7 joints: the seed plus a wrist roll about the tool axis at the tip.
-    let mut seven = joints.clone();
-    let z = home.rotation.column(2);
-    let p = home.translation;
-    let w = p.cross(&z);
-    let screw = [z.0[0], z.0[1], z.0[2], w.0[0], w.0[1], w.0[2]];
-    let s = screw.map(|x| Real::to_f64(x));
-    seven.push(Joint::from_f64(
-        &Joint::new("j7", JointKind::Revolute, s, -3.0, 3.0).prepared(),
-    ));
-    bench_chain(c, "seven", &seven, home);
+    // The 7-joint arm of test_data/urdf/arm7.urdf, as benches/ops.rs runs it.
+    let (arm, arm_home) = robots::core_chain::<T>(&robots::robot_chain(&robots::ARM7));
+    bench_chain(c, "7dof", &arm, arm_home);
 }
 
 fn all(c: &mut Criterion) {

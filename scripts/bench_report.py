@@ -5,7 +5,10 @@
   bench_report.py firmware FWTARGET OUT.json  M4F numbers from scripts/firmware.sh's run
   bench_report.py render DIR > BENCHMARKS.md  DIR holds machine.json, criterion dir path,
                                               pytransform3d.json, flops.json, callgrind.json,
-                                              firmware.json
+                                              firmware.json, pinocchio.txt, fit_bench.txt,
+                                              firmware_targets.md (kept as it is)
+  bench_report.py pinocchio-ir FK_BENCH        Pinocchio FK instructions per call (valgrind)
+  bench_report.py selftest                    the line parsers on made-up lines
 """
 
 import glob
@@ -43,6 +46,24 @@ def callgrind_ir(bin_, op, reps):
     return ir
 
 
+def cmd_pinocchio_ir(fk_bench):
+    """Instructions per forwardKinematics call of each robot: two whole-program runs of the
+    harness (1000 and 21000 calls of one batch) under callgrind, the difference / 20000, so
+    that model building and the check cancel out."""
+    for robot in ("seed", "arm7"):
+        tot = []
+        for calls in (1000, 21000):
+            out = "/tmp/ppoe-bench-pin-callgrind.%d.out" % os.getpid()
+            subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out,
+                            fk_bench, "1", str(calls), robot],
+                           check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            with open(out) as f:
+                tot.append(next(int(l.split()[1]) for l in f
+                                if l.startswith("summary:") or l.startswith("totals:")))
+            os.remove(out)
+        print("pinocchio_ir robot=%s ir_per_call=%.0f" % (robot, (tot[1] - tot[0]) / 20000))
+
+
 def cmd_callgrind(bin_, out):
     ops = subprocess.run(
         [bin_], env=dict(os.environ, PPOE_CALLGRIND="list"), capture_output=True, text=True,
@@ -63,6 +84,52 @@ def cmd_callgrind(bin_, out):
         if not op.startswith("empty/"):
             net[op] = ir - empty.get(t, 0.0)
     json.dump({"reps": reps, "overhead": empty, "ir_per_call": net}, open(out, "w"), indent=1)
+
+
+# ---------------------------------------------------------------- key=value lines
+def kv_lines(text, prefix):
+    """The lines `<prefix> k=v k=v ...` of text as dicts (other lines are ignored)."""
+    rows = []
+    for line in (text or "").splitlines():
+        parts = line.split()
+        if not parts or parts[0] != prefix:
+            continue
+        rows.append(dict(p.split("=", 1) for p in parts[1:] if "=" in p))
+    return rows
+
+
+def read_text(path):
+    try:
+        return open(path).read()
+    except OSError:
+        return None
+
+
+def step_error(text):
+    """The reason a step left instead of results (`error: ...`), or None."""
+    if text is None:
+        return "the step did not run"
+    if text.startswith("error: "):
+        return text[len("error: "):].strip()
+    return None
+
+
+def selftest():
+    fit = ("fit_bench robot=seed.urdf joints=6 model=joint tracker=no samples=2000 median_s=0.0123"
+           " iters=7 converged=true\nnoise line\n")
+    rows = kv_lines(fit, "fit_bench")
+    assert rows == [{"robot": "seed.urdf", "joints": "6", "model": "joint", "tracker": "no",
+                     "samples": "2000", "median_s": "0.0123", "iters": "7",
+                     "converged": "true"}], rows
+    assert "fit_bench" in render_fit(fit), render_fit(fit)
+    pin = ("versions pin=4.1.0 gxx=12.2.0\npinocchio robot=seed joints=6 ns_per_call=153.07"
+           " min_ns=151.81 batches=7 calls=5000 max_abs_err=2.220e-16\n")
+    r = kv_lines(pin, "pinocchio")
+    assert r[0]["robot"] == "seed" and float(r[0]["ns_per_call"]) == 153.07, r
+    assert kv_lines(pin, "versions")[0]["pin"] == "4.1.0"
+    assert step_error("error: skipped: g++ is not installed") == "skipped: g++ is not installed"
+    assert step_error(pin) is None
+    print("bench_report selftest: 6 passed, 0 failed")
 
 
 # ---------------------------------------------------------------- firmware
@@ -192,6 +259,138 @@ def fw_function_sizes_mangled(elf):
     return syms
 
 
+# ---------------------------------------------------------------- robots, rank-1, fit
+def ns(v):
+    return "—" if v is None else ("%.1f" % v if v < 1000 else "%.0f" % v)
+
+
+def pinocchio_ns(pin_text):
+    """robot name -> Pinocchio FK median ns per call (from fk_bench's lines)."""
+    return {r["robot"]: float(r["ns_per_call"]) for r in kv_lines(pin_text, "pinocchio")}
+
+
+def render_robots(crit, pin_text, ir):
+    """Seed and 7-joint arm: ppoe PPOE/FK, the nalgebra port, Pinocchio's FK (ns per call),
+    and their instruction counts where callgrind ran."""
+    pin = pinocchio_ns(pin_text)
+    pin_ir = {r["robot"]: float(r["ir_per_call"]) for r in kv_lines(pin_text, "pinocchio_ir")}
+    err = step_error(pin_text)
+    ver = (kv_lines(pin_text, "versions") or [{}])[0]
+    L = ["## Seed robot (6 joints) and 7-joint arm: ppoe, the nalgebra port and Pinocchio", ""]
+    L.append("Nanoseconds per call (criterion medians; Pinocchio: median of the harness's batches).")
+    L.append("The 7-joint arm is test_data/urdf/arm7.urdf (full-rank, correlated joint covariances,")
+    L.append("benches/pinocchio/robots.rs); PPOE = `ChainView::ppoe`, second order, right perturbation.")
+    L.append("")
+    L.append("| robot | ppoe PPOE f64 | ppoe PPOE f32 | ppoe FK f64 | ppoe FK f32 | nalgebra port PPOE f64 | Pinocchio FK f64 | nalgebra / ppoe PPOE (f64) | ppoe PPOE / Pinocchio FK | ppoe FK / Pinocchio FK |")
+    L.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for robot, key, pkey in (("seed", "seed", "seed"), ("7-joint arm", "7dof", "arm7")):
+        g = lambda k: crit.get(k)
+        p64, p32 = g("ppoe_%s/ours/f64" % key), g("ppoe_%s/ours/f32" % key)
+        f64_, f32_ = g("fk_%s/ours/f64" % key), g("fk_%s/ours/f32" % key)
+        n64, pf = g("ppoe_%s/nalgebra/f64" % key), pin.get(pkey)
+        L.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            robot, ns(p64), ns(p32), ns(f64_), ns(f32_), ns(n64), ns(pf), ratio(n64, p64),
+            ratio(p64, pf), ratio(f64_, pf)))
+    L.append("")
+    if pin:
+        L.append("Pinocchio %s (pip package `pin`), `pinocchio::forwardKinematics(model, data, q)` in C++"
+                 " (benches/pinocchio/fk_bench.cpp, g++ %s `-O3`, default target like our build,"
+                 " header-only so the call is compiled with these flags). The model is built joint by"
+                 " joint (RX/RY/RZ where the axis is a coordinate axis, a frame with a negative one turned"
+                 " by π, RevoluteUnaligned otherwise)"
+                 " from the chain ppoe-build extracts, because urdfdom rejects the seed URDF; before"
+                 " timing, its tip pose `oMi[n]·tip` is checked against ppoe's forward kinematics on 3"
+                 " configurations per robot (largest element difference: %s). Same configuration as"
+                 " the criterion benches, %s batches of %s calls." % (
+                     ver.get("pin", "?"), ver.get("gxx", "?"),
+                     ", ".join("%s %s" % (r["robot"], r["max_abs_err"]) for r in kv_lines(pin_text, "pinocchio")),
+                     kv_lines(pin_text, "pinocchio")[0]["batches"], kv_lines(pin_text, "pinocchio")[0]["calls"]))
+    else:
+        L.append("Pinocchio: not measured (%s)." % (err or "no result lines"))
+    L.append("")
+    if ir:
+        L.append("Instructions per call, f64 (callgrind; Pinocchio: whole runs of the harness with 1000 and")
+        L.append("21000 calls, the difference / 20000):")
+        L.append("")
+        L.append("| robot | ppoe PPOE | ppoe FK | nalgebra port PPOE | Pinocchio FK | ppoe PPOE / Pinocchio FK |")
+        L.append("|---|---:|---:|---:|---:|---:|")
+        for robot, key, pkey in (("seed", "seed", "seed"), ("7-joint arm", "7dof", "arm7")):
+            a = ir.get("ppoe_%s/ours/f64" % key)
+            n0 = lambda v: "—" if v is None else "%.0f" % v
+            L.append("| %s | %s | %s | %s | %s | %s |" % (
+                robot, n0(a), n0(ir.get("fk_%s/ours/f64" % key)),
+                n0(ir.get("ppoe_%s/nalgebra/f64" % key)), n0(pin_ir.get(pkey)), ratio(a, pin_ir.get(pkey))))
+        L.append("")
+    return L
+
+
+def render_rank1(crit):
+    L = ["## Rank-1 PPOE against the dense PPOE (benches/rank1.rs)", ""]
+    L.append("`ChainView::ppoe_rank1` (one variance per joint along its screw axis) and the dense")
+    L.append("`ChainView::ppoe` on the same covariances (`screw_noise`), ns per call (criterion medians).")
+    L.append("")
+    L.append("| robot | scalar | dense | rank-1 | rank-1 checked | dense / rank-1 |")
+    L.append("|---|---|---:|---:|---:|---:|")
+    for robot, key in (("seed", "seed"), ("7-joint arm", "7dof")):
+        for t in ("f64", "f32"):
+            d = crit.get("rank1_%s/dense/%s" % (key, t))
+            r = crit.get("rank1_%s/rank1/%s" % (key, t))
+            rc = crit.get("rank1_%s/rank1_checked/%s" % (key, t))
+            L.append("| %s | %s | %s | %s | %s | %s |" % (robot, t, ns(d), ns(r), ns(rc), ratio(d, r)))
+    L.append("")
+    return L
+
+
+def render_fit(fit_text):
+    rows = kv_lines(fit_text, "fit_bench")
+    L = ["## Fit benchmark (ppoe-fit)", ""]
+    if not rows:
+        L.append("Not measured (%s)." % (step_error(fit_text) or "no `fit_bench` lines"))
+        L.append("")
+        return "\n".join(L) + "\n"
+    L.append("`cargo run --release -p ppoe-fit --example fit_bench` (its `fit_bench` lines, as printed):")
+    L.append("")
+    L.append("| robot | joints | model | tracker | samples | median s | iterations | converged |")
+    L.append("|---|---:|---|---|---:|---:|---:|---|")
+    for r in rows:
+        L.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % tuple(
+            r.get(k, "?") for k in ("robot", "joints", "model", "tracker", "samples", "median_s",
+                                    "iters", "converged")))
+    L.append("")
+    return "\n".join(L) + "\n"
+
+
+def target_rows(crit, pin_text):
+    """The budgets-table rows of the robot, Pinocchio and rank-1 targets."""
+    pin = pinocchio_ns(pin_text)
+    L = []
+
+    def at_least(name, limit, val):
+        L.append("| %s | ≥ %g× | %s | %s |" % (
+            name, limit, "not measured" if val is None else "%.2f×" % val,
+            "—" if val is None else "met" if val >= limit else "**missed** (%.0f%% of it)" % (100 * val / limit)))
+
+    def at_most(name, limit, val):
+        L.append("| %s | ≤ %g | %s | %s |" % (
+            name, limit, "not measured" if val is None else "%.2f" % val,
+            "—" if val is None else "met" if val <= limit else "**missed** by %.0f%%" % (100 * (val / limit - 1))))
+
+    def q(a, b):
+        return a / b if a is not None and b else None
+
+    for robot, key, pkey in (("seed", "seed", "seed"), ("7-joint arm", "7dof", "arm7")):
+        p64, p32 = crit.get("ppoe_%s/ours/f64" % key), crit.get("ppoe_%s/ours/f32" % key)
+        at_least("host f64 PPOE vs the nalgebra port, %s" % robot, 3,
+                 q(crit.get("ppoe_%s/nalgebra/f64" % key), p64))
+        at_most("host PPOE f32/f64 time, %s" % robot, 1, q(p32, p64))
+        at_most("host f64 PPOE / Pinocchio FK, %s" % robot, 0.8, q(p64, pin.get(pkey)))
+    for robot, key in (("seed", "seed"), ("7-joint arm", "7dof")):
+        for t in ("f64", "f32"):
+            at_least("host rank-1 PPOE vs dense, %s, %s" % (robot, t), 1.5,
+                     q(crit.get("rank1_%s/dense/%s" % (key, t)), crit.get("rank1_%s/rank1/%s" % (key, t))))
+    return L
+
+
 # ---------------------------------------------------------------- render
 def load(path):
     try:
@@ -230,18 +429,21 @@ def render(d):
     fl = load(os.path.join(d, "flops.json"))
     cg = load(os.path.join(d, "callgrind.json"))
     fw = load(os.path.join(d, "firmware.json"))
+    pin_text = read_text(os.path.join(d, "pinocchio.txt"))
+    fit_text = read_text(os.path.join(d, "fit_bench.txt"))
     L = []
     p = L.append
     p("# Benchmarks")
     p("")
     p("Generated by `scripts/bench-report.sh` on %s (UTC); regenerate with that one command." % m.get("date", "?"))
+    cargs = (read_text(os.path.join(d, "criterion_args")) or "?").strip()
     p("It is not run by CI: timings are noisy on shared VMs and the whole run takes several")
-    p("minutes. Criterion runs once for every op (`cargo bench --bench ops -- --warm-up-time 1")
-    p("--measurement-time 3`, short on purpose: medians are within a few % of longer runs,")
-    p("single runs can be off by more on a busy machine); every ratio below comes from this")
-    p("one run.")
+    p("minutes. Criterion runs once for every op (`cargo bench --bench ops --bench rank1 -- %s`;" % cargs)
+    p("the default `--warm-up-time 1 --measurement-time 3` is short on purpose: medians are within")
+    p("a few % of longer runs, single runs can be off by more on a busy machine); every ratio")
+    p("below comes from this one run.")
     p("")
-    p("**Machine** (all absolute host times): %s, %s cores, %s MHz (`/proc/cpuinfo`, KVM guest);"
+    p("**Machine** (all absolute host times): CPU %s, %s cores, %s MHz (`/proc/cpuinfo`, KVM guest);"
       % (m.get("model", "?"), m.get("cores", "?"), m.get("mhz", "?")))
     p("rustc %s; %s; load average when the run started: %s (other work on the machine inflates"
       " times; callgrind counts are unaffected)." % (m.get("rustc", "?"), m.get("git", "?"), m.get("loadavg", "?")))
@@ -271,6 +473,9 @@ def render(d):
     p("")
     p("f32 / f64 time ratio of the PPOE: %s (below 1 means f32 is faster)." % ratio(s32, s64))
     p("")
+    L.extend(render_robots(crit, pin_text, (cg or {}).get("ir_per_call", {})))
+    L.extend(render_rank1(crit))
+    L.extend(render_fit(fit_text).splitlines())
     # ---- chains
     p("## Cost per joint: synthetic chains (full-rank covariances), f64 and f32")
     p("")
@@ -294,7 +499,8 @@ def render(d):
     p("")
     p("| op | f64 µs | f32 µs | f32/f64 | f64 Ir | f32 Ir |")
     p("|---|---:|---:|---:|---:|---:|")
-    names = sorted({k.rsplit("/", 1)[0] for k in crit if not k.startswith("ppoe_chain/")})
+    names = sorted({k.rsplit("/", 1)[0] for k in crit
+                    if not k.startswith("ppoe_chain/") and not k.startswith("rank1_")})
     ir = (cg or {}).get("ir_per_call", {})
     for nme in names:
         a, b = c(nme + "/f64"), c(nme + "/f32")
@@ -418,12 +624,10 @@ def render(d):
             p("| %s | ≥ %g× | %s× | %s |" % (name, limit, "%.0f" % val if val >= 100 else "%.2f" % val,
                                               "met" if val >= limit else
                                               "**missed** (%.0f%% of it)" % (100 * val / limit)))
-    at_least("host f64 PPOE vs the nalgebra port (issue 6)", 2.9, n64 / s64 if n64 and s64 else None)
     pu64 = ((py or {}).get("us_per_call") or {}).get("example_ppoe")
     at_least("host f64 PPOE vs pytransform3d's example (issue 6)", 7000,
              pu64 * 1e3 / s64 if pu64 and s64 else None)
-    if s32 and s64:
-        p("| host f32 not slower than f64 (issue 6) | f32/f64 ≤ 1 | %.2f | %s |" % (s32 / s64, "met" if s32 <= s64 else "**missed** by %.0f%%" % (100 * (s32 / s64 - 1))))
+    L.extend(target_rows(crit, pin_text))
     if a1 and a32:
         p("| constant cost per joint (issue 6) | time(N)/N flat | %.1f ns (N=1) … %.1f ns (N=32) | see the chain table |" % (a1, a32 / 32))
     p("")
@@ -547,9 +751,21 @@ def render(d):
                      " a register takes two loads and a shuffle where f64 loads the second"
                      " straight into the upper half.")
         p(line)
-        line = None
-        if line:
-            p(line)
+    p("")
+    # ---- firmware targets: kept from BENCHMARKS.md as it was (it names its own run)
+    kept = (read_text(os.path.join(d, "firmware_targets.md")) or "").strip()
+    if kept:
+        p(kept)
+    else:
+        p("## Firmware targets (scripts/firmware.sh)")
+        p("")
+        p("No firmware-targets section in the previous BENCHMARKS.md to keep; run scripts/firmware.sh.")
+    fresh = read_text(os.path.join(d, "firmware_figures_this_run.md"))
+    if fresh:
+        p("")
+        p("### Firmware figures of this run (scripts/firmware.sh, `firmware-figures.md`)")
+        p("")
+        p(fresh.strip())
     return "\n".join(L) + "\n"
 
 
@@ -561,6 +777,10 @@ def main():
         cmd_firmware(sys.argv[2], sys.argv[3])
     elif cmd == "render":
         sys.stdout.write(render(sys.argv[2]))
+    elif cmd == "pinocchio-ir":
+        cmd_pinocchio_ir(sys.argv[2])
+    elif cmd == "selftest":
+        selftest()
     else:
         sys.exit("unknown command " + cmd)
 
