@@ -161,4 +161,31 @@ mod tests {
             );
         }
     }
+
+    #[test]
+    fn a_frame_failing_half_way_keeps_the_previous_files() {
+        let dir = super::super::tests::temp_path("half-way");
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let (html, gif) = (dir.join("a.html"), dir.join("a.gif"));
+        std::fs::write(&html, b"previous page").unwrap();
+        std::fs::write(&gif, b"previous gif").unwrap();
+        let (_shape, make) = counted();
+        let n = 12;
+        let survey = Survey::of(&Frames { n, make: &make }).unwrap();
+        // The survey saw every frame; the writers then meet a failure at frame 7.
+        let failing = |i: usize| {
+            anyhow::ensure!(i != 7, "frame 7 failed");
+            make(i)
+        };
+        let frames = Frames { n, make: &failing };
+        let e = super::super::write_html(&html, &frames, &survey).unwrap_err();
+        assert!(e.to_string().contains("frame 7"), "{e}");
+        let e = super::super::write_gif_with_progress(&gif, &frames, &survey, &mut |_| ());
+        assert!(e.unwrap_err().to_string().contains("frame 7"));
+        assert_eq!(std::fs::read(&html).unwrap(), b"previous page");
+        assert_eq!(std::fs::read(&gif).unwrap(), b"previous gif");
+        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+        assert_eq!(names.len(), 2, "temporaries left: {names:?}");
+    }
 }
