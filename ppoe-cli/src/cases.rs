@@ -1,46 +1,16 @@
 //! `render` and `mesh`: one frame per case of the input, each computed, written and dropped
 //! in turn (so memory does not grow with the number of cases), after the inputs were read
-//! once and the output files checked.
+//! once and the output files checked. A GIF or an HTML view of all cases makes each frame
+//! twice: once to fit the shared view, once to stream it out (see [`picture::Survey`]).
 
 use crate::draw::{self, level};
 use crate::names::shown;
-use crate::picture::Frame;
+use crate::picture::{self, Frame};
 use crate::{eval, load, output, ChainArgs, SurfaceArgs};
 use anyhow::{bail, Context};
 use ppoe::chain::{ChainView, Convention};
 use ppoe::Mat6;
 use std::path::Path;
-
-/// A GIF holds all its frames in memory before the first is encoded (one view is fitted
-/// to all of them); beyond this many bytes of frames the command refuses up front.
-pub const GIF_MEMORY_LIMIT: usize = 1 << 30;
-
-/// The approximate memory of one frame: the surface grid and the skeleton's points and
-/// frames.
-pub fn frame_bytes(grid: usize, joints: usize) -> usize {
-    let point = std::mem::size_of::<[f64; 3]>();
-    let mat = std::mem::size_of::<[[f64; 4]; 4]>();
-    grid * grid * point + grid * std::mem::size_of::<Vec<[f64; 3]>>() + (joints + 2) * (point + mat)
-}
-
-/// Refuses, before any computation, an animation whose frames would not fit in
-/// [`GIF_MEMORY_LIMIT`].
-///
-/// # Errors
-/// The estimate and what to change.
-pub fn check_gif_memory(n_frames: usize, grid: usize, joints: usize) -> anyhow::Result<()> {
-    let total = n_frames.saturating_mul(frame_bytes(grid, joints));
-    if total > GIF_MEMORY_LIMIT {
-        bail!(
-            "a GIF of {n_frames} frames at --grid {grid} holds about {} MB of frames in \
-             memory (the limit is {} MB): use fewer frames or cases, a smaller --grid, or \
-             png/svg pictures (written one at a time)",
-            total / 1_000_000,
-            GIF_MEMORY_LIMIT / 1_000_000
-        );
-    }
-    Ok(())
-}
 
 /// What to do with each frame.
 pub enum Sink<'a> {
@@ -53,14 +23,14 @@ pub enum Sink<'a> {
         /// The writer; it writes atomically (see [`output`]).
         write: &'a dyn Fn(&Path, &Frame) -> anyhow::Result<()>,
     },
-    /// Collect every frame into one animation at `dir/name`.
+    /// One animation of every frame at `dir/name`, streamed (see [`picture::Survey`]).
     Gif {
         /// The output directory.
         dir: &'a Path,
         /// The file name.
         name: &'a str,
     },
-    /// Collect every frame into one interactive HTML view at `dir/name`.
+    /// One interactive HTML view of every frame at `dir/name`, streamed.
     Html {
         /// The output directory.
         dir: &'a Path,
@@ -75,7 +45,6 @@ fn prepare(
     chain_args: &ChainArgs,
     input: Option<&Path>,
     noise: Option<&Path>,
-    grid: usize,
     sink: &Sink<'_>,
 ) -> anyhow::Result<(load::Robot, eval::Input)> {
     load::check_one_stdin(&chain_args.urdf, input)?;
@@ -91,7 +60,6 @@ fn prepare(
             output::check_targets(dir, &(0..n).map(name).collect::<Vec<_>>())?
         }
         Sink::Gif { dir, name } | Sink::Html { dir, name } => {
-            check_gif_memory(n, grid, robot.chain.joints.len())?;
             output::check_targets(dir, &[name.to_string()])?
         }
     }
@@ -113,7 +81,7 @@ pub fn run(
 ) -> anyhow::Result<()> {
     let (k, label) = level(surface)?;
     let grid = surface.grid as usize;
-    let (robot, cases) = prepare(chain_args, input, noise, grid, sink)?;
+    let (robot, cases) = prepare(chain_args, input, noise, sink)?;
     let home_frames = robot.chain.home_frames();
     let visuals = draw::robot_visuals(&robot, &chain_args.urdf)?;
     let (joints, home) = eval::core_joints::<f64>(&robot.chain);
@@ -123,13 +91,13 @@ pub fn run(
     };
     let (base, tip) = (shown(&robot.chain.base), shown(&robot.chain.tip));
     let n = cases.cases.len();
-    let mut gif_frames = Vec::new();
-    for (i, case) in cases.cases.iter().enumerate() {
+    let make = |i: usize| -> anyhow::Result<Frame> {
+        let case = &cases.cases[i];
         // Same checks and messages as `eval`.
         eval::eval_case(&chain, i, case, Convention::Right)?;
         let covs: Vec<Mat6<f64>> = case.covs.iter().map(|c| Mat6::from(*c)).collect();
         let title = format!("{base} → {tip}: case {}/{n}", i + 1);
-        let frame = draw::state(
+        let s = draw::state(
             title,
             &chain,
             &home_frames,
@@ -140,27 +108,27 @@ pub fn run(
             grid,
             &label,
             &visuals,
-        )
-        .with_context(|| format!("case {i}"))?
-        .frame;
-        match sink {
-            Sink::Each { dir, name, write } => {
+        );
+        Ok(s.with_context(|| format!("case {i}"))?.frame)
+    };
+    let (p, gif) = match sink {
+        Sink::Each { dir, name, write } => {
+            for i in 0..n {
                 let p = dir.join(name(i));
-                write(&p, &frame)?;
+                write(&p, &make(i)?)?;
                 output::print(format!("wrote {}\n", p.display()).as_bytes())?;
             }
-            Sink::Gif { .. } | Sink::Html { .. } => gif_frames.push(frame),
+            return Ok(());
         }
-    }
-    let (p, gif) = match sink {
         Sink::Gif { dir, name } => (dir.join(name), true),
         Sink::Html { dir, name } => (dir.join(name), false),
-        Sink::Each { .. } => return Ok(()),
     };
+    let frames = picture::Frames { n, make: &make };
+    let survey = picture::Survey::of(&frames)?;
     if gif {
-        draw::write_gif(&p, &gif_frames)?;
+        draw::write_gif(&p, &frames, &survey)?;
     } else {
-        crate::picture::write_html(&p, &gif_frames)?;
+        picture::write_html(&p, &frames, &survey)?;
     }
     output::print(format!("wrote {}\n", p.display()).as_bytes())?;
     Ok(())

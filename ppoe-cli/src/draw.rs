@@ -218,15 +218,22 @@ impl Progress {
     }
 }
 
-/// Writes an animated GIF with progress on stderr.
-pub fn write_gif(path: &Path, frames: &[Frame]) -> anyhow::Result<()> {
+/// Writes an animated GIF with progress on stderr (see [`picture::write_gif_with_progress`]).
+///
+/// # Errors
+/// As [`picture::write_gif_with_progress`].
+pub fn write_gif(
+    path: &Path,
+    frames: &picture::Frames<'_>,
+    survey: &picture::Survey,
+) -> anyhow::Result<()> {
     let name = path
         .file_name()
         .unwrap_or(path.as_os_str())
         .to_string_lossy();
-    let progress = Progress::new(format!("rendering {name}"), frames.len());
+    let progress = Progress::new(format!("rendering {name}"), frames.n);
     progress.set(0);
-    picture::write_gif_with_progress(path, frames, &mut |i| progress.set(i + 1))?;
+    picture::write_gif_with_progress(path, frames, survey, &mut |i| progress.set(i + 1))?;
     progress.finish();
     Ok(())
 }
@@ -305,8 +312,7 @@ pub fn demo(
     let png = out.join("ppoe-seed.png");
     picture::write_png(&png, &initial.frame)?;
 
-    let mut frames = Vec::with_capacity(n_frames);
-    for step in 0..n_frames {
+    let make = |step: usize| {
         let s = state(
             format!("ppoe seed: frame {step}/{n_frames}"),
             &chain,
@@ -318,14 +324,18 @@ pub fn demo(
             grid,
             &label,
             &visuals,
-        )
-        .with_context(|| format!("frame {step}"))?;
-        frames.push(s.frame);
-    }
+        );
+        Ok(s.with_context(|| format!("frame {step}"))?.frame)
+    };
+    let frames = picture::Frames {
+        n: n_frames,
+        make: &make,
+    };
+    let survey = picture::Survey::of(&frames)?;
     let html = out.join("ppoe-seed.html");
-    picture::write_html(&html, &frames)?;
+    picture::write_html(&html, &frames, &survey)?;
     let gif = out.join("ppoe-seed.gif");
-    write_gif(&gif, &frames)?;
+    write_gif(&gif, &frames, &survey)?;
     println!("wrote {} (initial state)", png.display());
     println!("wrote {} ({n_frames} frames)", gif.display());
     println!(

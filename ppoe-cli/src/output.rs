@@ -142,6 +142,28 @@ pub fn write_atomic(
     })
 }
 
+/// Writes `path` atomically through a buffered writer given to `write`, for writers whose
+/// own errors are not I/O errors (a frame that cannot be made half-way through a page).
+///
+/// # Errors
+/// As [`write_atomic_path`]; I/O errors as sentences naming `path`.
+pub fn write_atomic_with(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
+    write_atomic_path(path, |temp| {
+        let sentence =
+            |e: io::Error| anyhow::anyhow!("cannot write {}: {}", path.display(), io_sentence(&e));
+        let file = std::fs::File::create(temp).map_err(sentence)?;
+        let mut w = io::BufWriter::new(file);
+        write(&mut w).map_err(|e| match e.downcast::<io::Error>() {
+            Ok(io) => sentence(io),
+            Err(e) => e,
+        })?;
+        w.flush().map_err(sentence)
+    })
+}
+
 /// Checks, before any computation, that the files `names` can be written in `dir`:
 /// creates `dir` if needed, checks that it is a directory, that no target is a directory,
 /// and that a file can be created there.

@@ -1,5 +1,6 @@
 //! Output robustness (issue class: output): a closed or full standard output, files
-//! written atomically, outputs checked before any computation, bounded animation memory.
+//! written atomically, outputs checked before any computation. (Bounded animation
+//! memory: tests/stream_memory.rs.)
 
 mod common;
 use common::*;
@@ -184,28 +185,4 @@ fn outputs_are_checked_before_any_computation() {
     bad.clear();
     let o = run(&["demo", "--out", file.to_str().unwrap()]);
     assert!(one_line_error(&o, 1).contains("not a directory"));
-}
-
-#[test]
-fn animation_memory_is_bounded_up_front() {
-    let dir = fresh_dir("memory");
-    // 10⁴ frames of 400×400 points would hold ~38 GB: refused before computing any.
-    let o = run(&[
-        "demo",
-        "--frames",
-        "10000",
-        "--grid",
-        "400",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    let line = one_line_error(&o, 1);
-    assert!(
-        line.contains("MB of frames") && line.contains("--grid"),
-        "{line}"
-    );
-    assert!(
-        std::fs::read_dir(&dir).unwrap().next().is_none(),
-        "nothing written"
-    );
 }

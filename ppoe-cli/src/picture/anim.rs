@@ -1,7 +1,10 @@
-//! The animated GIF: one shared palette for the whole animation, and after the first frame
-//! only the rectangle that changed, with unchanged pixels inside it transparent (they
-//! compress to almost nothing), so a 200-frame animation stays small.
+//! The animated GIF: one shared palette for the whole animation (learnt from a few sample
+//! frames in the survey pass), and after the first frame only the rectangle that changed,
+//! with unchanged pixels inside it transparent (they compress to almost nothing), so a
+//! 200-frame animation stays small. Each frame is written to the file as soon as it and
+//! the frames before it are drawn.
 
+use super::survey::{Frames, Survey};
 use super::{key_colours, rgb_buffer, Frame, View, GIF_DELAY_MS};
 use anyhow::{anyhow, Context};
 use std::borrow::Cow;
@@ -125,10 +128,44 @@ fn delta(shown: &mut [u8], next: &[u8], width: usize) -> gif::Frame<'static> {
     }
 }
 
-/// Draws `frames` on all available cores, a few per core at a time (so memory stays
-/// small), and hands each frame's palette indices to `sink` in order.
+/// Makes and draws frames `first..first + count` on `threads` threads, each frame made,
+/// drawn and dropped by one thread; their palette indices in order.
+fn draw_batch(
+    frames: &Frames<'_>,
+    (first, count): (usize, usize),
+    threads: usize,
+    view: &View,
+    palette: &Palette,
+) -> anyhow::Result<Vec<Vec<u8>>> {
+    let mut done: Vec<(usize, anyhow::Result<Vec<u8>>)> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..threads)
+            .map(|t| {
+                s.spawn(move || {
+                    (first + t..first + count)
+                        .step_by(threads)
+                        .map(|i| (i, (frames.make)(i).and_then(|f| indexed(&f, view, palette))))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| {
+                h.join().unwrap_or_else(|_| {
+                    vec![(usize::MAX, Err(anyhow!("a drawing thread panicked")))]
+                })
+            })
+            .collect()
+    });
+    done.sort_by_key(|(i, _)| *i);
+    done.into_iter().map(|(_, px)| px).collect()
+}
+
+/// Makes and draws the frames on all available cores, a few per core at a time (so
+/// memory does not grow with the number of frames), and hands each frame's palette
+/// indices to `sink` in order.
 fn draw_in_order(
-    frames: &[Frame],
+    frames: &Frames<'_>,
     view: &View,
     palette: &Palette,
     sink: &mut dyn FnMut(usize, Vec<u8>) -> anyhow::Result<()>,
@@ -137,58 +174,42 @@ fn draw_in_order(
         .map_or(1, |n| n.get())
         .clamp(1, 8);
     let batch = threads * 4;
-    for (b, chunk) in frames.chunks(batch).enumerate() {
-        let mut done: Vec<(usize, anyhow::Result<Vec<u8>>)> = std::thread::scope(|s| {
-            let handles: Vec<_> = (0..threads)
-                .map(|t| {
-                    s.spawn(move || {
-                        chunk
-                            .iter()
-                            .enumerate()
-                            .skip(t)
-                            .step_by(threads)
-                            .map(|(i, f)| (i, indexed(f, view, palette)))
-                            .collect::<Vec<_>>()
-                    })
-                })
-                .collect();
-            handles
-                .into_iter()
-                .flat_map(|h| {
-                    h.join().unwrap_or_else(|_| {
-                        vec![(usize::MAX, Err(anyhow!("a drawing thread panicked")))]
-                    })
-                })
-                .collect()
-        });
-        done.sort_by_key(|(i, _)| *i);
-        for (i, px) in done {
-            sink(b * batch + i, px?)?;
+    for first in (0..frames.n).step_by(batch) {
+        let count = batch.min(frames.n - first);
+        let drawn = draw_batch(frames, (first, count), threads.min(count), view, palette)?;
+        for (i, px) in (first..).zip(drawn) {
+            sink(i, px)?;
         }
     }
     Ok(())
 }
 
-/// Writes the animation (see [`super::write_gif_with_progress`]).
-pub fn write(path: &Path, frames: &[Frame], progress: &mut dyn FnMut(usize)) -> anyhow::Result<()> {
-    anyhow::ensure!(
-        !frames.is_empty(),
-        "no frames to write to {}",
-        path.display()
-    );
-    let view = View::fit(frames);
+/// The palette of the animation (see [`Palette`]) from the survey's sample frames.
+fn palette(survey: &Survey) -> anyhow::Result<Palette> {
+    let samples = survey
+        .samples
+        .iter()
+        .map(|f| rgb_buffer(f, &survey.view))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let body_rgb: Vec<[u8; 3]> = survey.first().bodies.iter().map(|b| b.rgb).collect();
+    Ok(Palette::learn(&samples, &body_rgb))
+}
+
+/// Writes the animation (see [`super::write_gif_with_progress`]): the header and the
+/// palette from `survey`, then each frame as it is drawn.
+pub fn write(
+    path: &Path,
+    frames: &Frames<'_>,
+    survey: &Survey,
+    progress: &mut dyn FnMut(usize),
+) -> anyhow::Result<()> {
+    let view = &survey.view;
     let (w, h) = (view.width, view.height);
     anyhow::ensure!(
         w <= u16::MAX as u32 && h <= u16::MAX as u32,
         "image too large for a GIF"
     );
-    let n_samples = 4.min(frames.len());
-    let samples = (0..n_samples)
-        .map(|k| rgb_buffer(&frames[k * frames.len() / n_samples], &view))
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    let body_rgb: Vec<[u8; 3]> = frames[0].bodies.iter().map(|b| b.rgb).collect();
-    let palette = Palette::learn(&samples, &body_rgb);
-    drop(samples);
+    let palette = palette(survey)?;
     crate::output::write_atomic_path(path, |tmp| {
         let file = std::fs::File::create(tmp)
             .with_context(|| format!("cannot create {}", tmp.display()))?;
@@ -200,7 +221,7 @@ pub fn write(path: &Path, frames: &[Frame], progress: &mut dyn FnMut(usize)) -> 
         )?;
         enc.set_repeat(gif::Repeat::Infinite)?;
         let mut shown: Option<Vec<u8>> = None;
-        draw_in_order(frames, &view, &palette, &mut |i, px| {
+        draw_in_order(frames, view, &palette, &mut |i, px| {
             let frame = match shown.as_mut() {
                 None => {
                     let f = gif::Frame {

@@ -7,11 +7,16 @@
 //! The surface is sent on a grid of at most [`MAX_GRID`] points per side and its
 //! coordinates quantised to 16 bits over the view's cube (0.03 mm for a 2 m cube: far
 //! below a pixel), which keeps a 200-frame page near 2 MB.
+//!
+//! The page is streamed: everything the frames share comes from the survey pass (see
+//! [`super::survey`]), then each frame's data is written as it is made.
 
 use super::geom::{finite, origin};
-use super::{Frame, View};
+use super::survey::{Frames, Survey};
+use super::Frame;
+use anyhow::Context;
 use serde_json::{json, Value};
-use std::collections::HashMap;
+use std::io::Write;
 use std::sync::Arc;
 
 /// Most surface grid points per side in the page.
@@ -92,25 +97,43 @@ fn pose12(m: &[[f64; 4]; 4]) -> Vec<Value> {
         .collect()
 }
 
-/// The shapes used by the frames, each once, and a map from shape pointer to its index.
-fn shapes(frames: &[Frame]) -> (Vec<Value>, HashMap<*const super::Shape, usize>) {
-    let mut index = HashMap::new();
-    let mut out = Vec::new();
-    for b in frames.iter().flat_map(|f| &f.bodies) {
-        let key = Arc::as_ptr(&b.shape);
-        if let std::collections::hash_map::Entry::Vacant(e) = index.entry(key) {
-            e.insert(out.len());
-            let v: Vec<Value> = b.shape.vertices.iter().flatten().map(|&x| r(x)).collect();
-            out.push(json!({"v": v, "f": b.shape.faces, "closed": b.shape.closed}));
-        }
-    }
-    (out, index)
+/// One frame's data for the page: the surface quantised about the cube's centre `c` in
+/// units of `unit`, the bodies (shapes by their index in the survey), axes, skeleton and
+/// markers.
+fn frame_json(f: &Frame, c: [f64; 3], unit: f64, survey: &Survey) -> anyhow::Result<Value> {
+    let (nr, nc, s) = surface_b64(f, c, unit);
+    let bodies = f
+        .bodies
+        .iter()
+        .map(|b| {
+            let s = survey
+                .shape_index
+                .get(&Arc::as_ptr(&b.shape))
+                .context("a frame uses a shape the survey did not see")?;
+            Ok(json!({"s": s, "rgb": b.rgb, "m": pose12(&b.pose)}))
+        })
+        .collect::<anyhow::Result<Vec<Value>>>()?;
+    let axes: Vec<Value> = f
+        .frames
+        .iter()
+        .chain([&f.tool])
+        .map(|m| json!(pose12(m)))
+        .collect();
+    let joints: Vec<Value> = f.joints.iter().map(|p| json!(p.map(r))).collect();
+    Ok(json!({
+        "title": f.title, "rows": nr, "cols": nc, "surface": s, "bodies": bodies,
+        "axes": axes, "joints": joints, "tool": origin(&f.tool).map(r),
+        "mean2": f.mean2.map(r),
+    }))
 }
 
-/// The page's data: the view, the shapes and every frame.
-fn data(frames: &[Frame]) -> anyhow::Result<Value> {
-    anyhow::ensure!(!frames.is_empty(), "no frames to show");
-    let view = View::fit(frames);
+/// Stands for the frames in the page's data until they are streamed in its place.
+const FRAMES_MARK: &str = "\u{1}ppoe-frames\u{1}";
+
+/// The page's data without the frames: the view, the shapes, the colours, and
+/// [`FRAMES_MARK`] where the frames go; and the cube's centre and the quantisation unit.
+fn data_without_frames(survey: &Survey) -> (Value, [f64; 3], f64) {
+    let view = &survey.view;
     let c = [
         (view.x.0 + view.x.1) / 2.0,
         (view.y.0 + view.y.1) / 2.0,
@@ -118,40 +141,24 @@ fn data(frames: &[Frame]) -> anyhow::Result<Value> {
     ];
     let span = view.x.1 - view.x.0;
     let unit = span / (2.0 * Q);
-    let (shape_list, index) = shapes(frames);
-    let frames_json: Vec<Value> = frames
+    let shapes: Vec<Value> = survey
+        .shapes
         .iter()
-        .map(|f| {
-            let (nr, nc, s) = surface_b64(f, c, unit);
-            let bodies: Vec<Value> = f
-                .bodies
-                .iter()
-                .map(|b| {
-                    json!({"s": index[&Arc::as_ptr(&b.shape)], "rgb": b.rgb, "m": pose12(&b.pose)})
-                })
-                .collect();
-            let axes: Vec<Value> = f
-                .frames
-                .iter()
-                .chain([&f.tool])
-                .map(|m| json!(pose12(m)))
-                .collect();
-            let joints: Vec<Value> = f.joints.iter().map(|p| json!(p.map(r))).collect();
-            json!({
-                "title": f.title, "rows": nr, "cols": nc, "surface": s, "bodies": bodies,
-                "axes": axes, "joints": joints, "tool": origin(&f.tool).map(r),
-                "mean2": f.mean2.map(r),
-            })
+        .map(|s| {
+            let v: Vec<Value> = s.vertices.iter().flatten().map(|&x| r(x)).collect();
+            json!({"v": v, "f": s.faces, "closed": s.closed})
         })
         .collect();
-    Ok(json!({
+    let first = survey.first();
+    let data = json!({
         "view": {"x": [view.x.0, view.x.1], "y": [view.y.0, view.y.1], "z": [view.z.0, view.z.1]},
-        "centre": c, "unit": unit, "label": frames[0].sigma_label,
-        "axisLen": super::axis_len_hint(&frames[0]),
+        "centre": c, "unit": unit, "label": first.sigma_label,
+        "axisLen": super::axis_len_hint(first),
         "colours": {"surface": rgb(super::SURFACE), "wire": rgb(super::WIRE),
                     "skeleton": rgb(super::SKELETON), "mean2": rgb(super::MEAN2)},
-        "delayMs": super::GIF_DELAY_MS, "shapes": shape_list, "frames": frames_json,
-    }))
+        "delayMs": super::GIF_DELAY_MS, "shapes": shapes, "frames": FRAMES_MARK,
+    });
+    (data, c, unit)
 }
 
 fn rgb(c: plotters::style::RGBColor) -> [u8; 3] {
@@ -165,15 +172,15 @@ fn escape(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// The page: the frames' data as JSON inside a `<script type="application/json">` (with
-/// `<` escaped so no string can end the element), the viewer's script and its controls.
-///
-/// # Errors
-/// No frames.
-pub fn page(frames: &[Frame]) -> anyhow::Result<String> {
-    let data = serde_json::to_string(&data(frames)?)?.replace('<', "\\u003c");
-    let title = escape(&frames[0].title);
-    Ok(format!(
+/// JSON text safe inside a `<script>` element: `<` escaped so no string can end it.
+fn script_json(v: &Value) -> anyhow::Result<String> {
+    Ok(serde_json::to_string(v)?.replace('<', "\\u003c"))
+}
+
+/// The page before its data: the head, the styles and the controls.
+fn head(title: &str) -> String {
+    let title = escape(title);
+    format!(
         r#"<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
 <title>{title}</title>
@@ -195,13 +202,40 @@ body {{ margin: 0; font: 14px "DejaVu Sans", sans-serif; background: #fff; overf
 <div id="legend"></div>
 <div id="bar"><button id="play">pause</button><input id="slider" type="range" min="0" value="0">
 <span id="help">drag: rotate · wheel: zoom · right/shift-drag: pan · double-click: reset</span></div>
-<script id="ppoe-data" type="application/json">{data}</script>
-<script>
-{VIEWER_JS}
-</script>
-</body></html>
-"#
-    ))
+<script id="ppoe-data" type="application/json">"#
+    )
+}
+
+/// Writes the page to `out`: the frames' data as JSON inside a
+/// `<script type="application/json">`, each frame made and written in turn (only one in
+/// memory), then the viewer's script.
+///
+/// # Errors
+/// A frame that cannot be made, or a write error.
+pub fn write_page(out: &mut dyn Write, frames: &Frames<'_>, survey: &Survey) -> anyhow::Result<()> {
+    let (data, c, unit) = data_without_frames(survey);
+    let data = script_json(&data)?;
+    let mark = script_json(&Value::from(FRAMES_MARK))?;
+    let (before, after) = data
+        .split_once(&mark)
+        .context("the page's data lost its frames mark")?;
+    out.write_all(head(&survey.first().title).as_bytes())?;
+    out.write_all(before.as_bytes())?;
+    out.write_all(b"[")?;
+    for i in 0..frames.n {
+        if i > 0 {
+            out.write_all(b",")?;
+        }
+        let f = (frames.make)(i)?;
+        out.write_all(script_json(&frame_json(&f, c, unit, survey)?)?.as_bytes())?;
+    }
+    out.write_all(b"]")?;
+    out.write_all(after.as_bytes())?;
+    write!(
+        out,
+        "</script>\n<script>\n{VIEWER_JS}\n</script>\n</body></html>\n"
+    )?;
+    Ok(())
 }
 
 #[cfg(test)]

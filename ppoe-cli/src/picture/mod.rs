@@ -28,6 +28,7 @@ pub mod html;
 mod legend;
 mod scene;
 pub mod solid;
+mod survey;
 
 use anyhow::anyhow;
 use geom::{finite, norm, origin, sub};
@@ -36,6 +37,7 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 pub use solid::{Body, Shape};
 use std::path::Path;
+pub use survey::{Frames, Survey};
 
 /// Width of every picture in pixels.
 pub const WIDTH: u32 = 800;
@@ -126,24 +128,32 @@ fn extent_points(f: &Frame, add: &mut dyn FnMut(&[f64; 3], f64)) {
     }
 }
 
-impl View {
-    /// A view that holds every finite point of every frame (skeleton, frame axes, tool,
-    /// surface, second-order mean, visuals) with a margin: all three ranges of the same
-    /// length (10 % more than the largest extent, rounded up to 0.1 m), centred on the
-    /// points, z starting at the floor (z = 0) when the arm stands on it and fits.
-    pub fn fit(frames: &[Frame]) -> View {
-        let mut lo = [0.0f64; 3];
-        let mut hi = [0.0f64; 3];
-        for f in frames {
-            extent_points(f, &mut |p, pad| {
-                if finite(p) {
-                    for k in 0..3 {
-                        lo[k] = lo[k].min(p[k] - pad);
-                        hi[k] = hi[k].max(p[k] + pad);
-                    }
+/// The running bounds of every frame seen so far, so an animation's [`View`] can be
+/// fitted while its frames stream past (none of them kept).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Extent {
+    lo: [f64; 3],
+    hi: [f64; 3],
+}
+
+impl Extent {
+    /// Widens the bounds to hold every finite point of `f` with its margin (see
+    /// [`View::fit`]).
+    pub fn add(&mut self, f: &Frame) {
+        let (lo, hi) = (&mut self.lo, &mut self.hi);
+        extent_points(f, &mut |p, pad| {
+            if finite(p) {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(p[k] - pad);
+                    hi[k] = hi[k].max(p[k] + pad);
                 }
-            });
-        }
+            }
+        });
+    }
+
+    /// The view of the frames added so far (see [`View::fit`]).
+    pub fn view(&self) -> View {
+        let (lo, hi) = (self.lo, self.hi);
         let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0f64, f64::max);
         // A cube 10 % larger than the largest extent, in whole decimetres (at least 0.2 m).
         let span = ((extent * 1.1 * 10.0 - 1e-9).ceil() / 10.0).max(0.2);
@@ -163,6 +173,20 @@ impl View {
             width: WIDTH,
             height: HEIGHT,
         }
+    }
+}
+
+impl View {
+    /// A view that holds every finite point of every frame (skeleton, frame axes, tool,
+    /// surface, second-order mean, visuals) with a margin: all three ranges of the same
+    /// length (10 % more than the largest extent, rounded up to 0.1 m), centred on the
+    /// points, z starting at the floor (z = 0) when the arm stands on it and fits.
+    pub fn fit(frames: &[Frame]) -> View {
+        let mut e = Extent::default();
+        for f in frames {
+            e.add(f);
+        }
+        e.view()
     }
 }
 
@@ -283,30 +307,35 @@ pub fn write_svg(path: &Path, frame: &Frame) -> anyhow::Result<()> {
 }
 
 /// Writes the frames as an animated GIF: 800×700, [`GIF_DELAY_MS`] ms apart, one fixed
-/// view fitted to all frames (so the axes do not jump), looping; calls `progress(i)` after
-/// frame `i` (0-based) is written, in order.
+/// view fitted to all frames (`survey.view`, so the axes do not jump), looping; calls
+/// `progress(i)` after frame `i` (0-based) is written, in order.
 ///
-/// Frames are drawn on all available cores and written in order with one palette for the
-/// whole animation (the drawing colours exactly, plus colours learnt from a few sample
-/// frames); after the first frame each frame holds only the rectangle that changed.
+/// Frames are made again and drawn on all available cores, a few at a time, and each is
+/// written to the (temporary) file as soon as the frames before it are: memory does not
+/// grow with the number of frames. One palette serves the whole animation (the drawing
+/// colours exactly, plus colours learnt from the survey's sample frames); after the first
+/// frame each frame holds only the rectangle that changed.
 ///
 /// # Errors
-/// A drawing failure, or the file cannot be written (an earlier file at `path` is kept).
+/// A frame that cannot be made, a drawing failure, or the file cannot be written (an
+/// earlier file at `path` is kept).
 pub fn write_gif_with_progress(
     path: &Path,
-    frames: &[Frame],
+    frames: &Frames<'_>,
+    survey: &Survey,
     progress: &mut dyn FnMut(usize),
 ) -> anyhow::Result<()> {
-    anim::write(path, frames, progress)
+    anim::write(path, frames, survey, progress)
 }
 
-/// Writes the frames as one self-contained interactive HTML page (see [`html`]).
+/// Writes the frames as one self-contained interactive HTML page (see [`html`]), each
+/// frame made again and written as it comes (memory does not grow with their number).
 ///
 /// # Errors
-/// A drawing failure, or the file cannot be written (an earlier file at `path` is kept).
-pub fn write_html(path: &Path, frames: &[Frame]) -> anyhow::Result<()> {
-    let page = html::page(frames)?;
-    crate::output::write_atomic(path, |w| w.write_all(page.as_bytes()))
+/// A frame that cannot be made, or the file cannot be written (an earlier file at `path`
+/// is kept).
+pub fn write_html(path: &Path, frames: &Frames<'_>, survey: &Survey) -> anyhow::Result<()> {
+    crate::output::write_atomic_with(path, |w| html::write_page(w, frames, survey))
 }
 
 /// The colours the pictures draw with, kept exactly in the GIF palette (small items such
@@ -560,7 +589,10 @@ pub(crate) mod tests {
             .collect();
         let path = temp_path("anim.gif");
         let mut seen = Vec::new();
-        write_gif_with_progress(&path, &frames, &mut |i| seen.push(i)).unwrap();
+        let make = |i: usize| Ok(frames[i].clone());
+        let source = Frames { n: 3, make: &make };
+        let survey = Survey::of(&source).unwrap();
+        write_gif_with_progress(&path, &source, &survey, &mut |i| seen.push(i)).unwrap();
         assert_eq!(seen, vec![0, 1, 2]);
         let (w, h, shown) = composed_gif_frames(&path);
         assert_eq!((w, h), (WIDTH, HEIGHT));
