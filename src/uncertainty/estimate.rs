@@ -44,12 +44,15 @@ impl<T: Real> IterationOptions<T> {
 }
 
 impl<T: Real> Default for IterationOptions<T> {
-    /// 20 iterations at most (pytransform3d's fixed count), stop at a step of 4·ε·s or
-    /// when converged steps stop shrinking, converged below √ε·s (s: the scale of the
-    /// data, see [`IterationOptions`]).
+    /// 50 iterations at most (per start of [`pose_fusion`](super::pose_fusion)), stop
+    /// at a step of 4·ε·s or when converged steps stop shrinking, converged below √ε·s
+    /// (s: the scale of the data, see [`IterationOptions`]). 50: on pytransform3d's 200
+    /// fusion reference problems every run that reaches a stationary point does so
+    /// within 31 iterations (f32; 21 in f64), and the Fréchet means within 50
+    /// (`tests/golden_core.rs`, `tests/fusion_golden.rs`).
     fn default() -> Self {
         Self {
-            max_iterations: 20,
+            max_iterations: 50,
             step_tolerance: T::EPS * T::lit(4.0),
             converged_tolerance: T::TOL,
         }
