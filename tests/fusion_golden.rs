@@ -80,6 +80,35 @@ fn fuse<T: Real>(c: &Case, means: &[Transform<f64>]) -> (Transform<f64>, Mat6<f6
     fuse_with::<T>(c, means, &c.covs)
 }
 
+/// The iterations of the returned run with the default options, which must stop before
+/// the cap when it converges.
+fn iterations<T: Real>(c: &Case) -> usize {
+    let m: Vec<Transform<T>> = c.means.iter().map(Transform::from_f64).collect();
+    let k: Vec<Mat6<T>> = c.covs.iter().map(cast_m::<T, 6, 6>).collect();
+    let opts = IterationOptions::default();
+    let f = uncertainty::pose_fusion(&m, &k, &opts).unwrap();
+    assert!(
+        f.converged && f.iterations < opts.max_iterations,
+        "{}",
+        c.label
+    );
+    f.iterations
+}
+
+/// The default cap of 50 leaves a margin: the longest converging run.
+#[test]
+fn converging_runs_stop_well_before_the_cap() {
+    let (mut n64, mut n32) = (0, 0);
+    for (_, c) in cases() {
+        if c.reference.is_some() {
+            n64 = n64.max(iterations::<f64>(&c));
+            n32 = n32.max(iterations::<f32>(&c));
+        }
+    }
+    println!("pose_fusion: longest converging run {n64} iterations (f64), {n32} (f32)");
+    assert!(n64 <= 40 && n32 <= 40);
+}
+
 fn fuse_with<T: Real>(
     c: &Case,
     means: &[Transform<f64>],
