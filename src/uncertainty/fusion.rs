@@ -19,7 +19,7 @@ pub struct Fusion<T> {
     pub cov: Mat6<T>,
     /// The residual cost `V = ½ Σₖ xₖᵀ Σₖ⁻¹ xₖ`, `xₖ = Log(T̄·Tₖ⁻¹)`, at `mean`.
     pub cost: T,
-    /// Iterations of the run that produced `mean` (one of K + 1, see [`pose_fusion`]).
+    /// Iterations of the run that produced `mean` (of up to K + 1, see [`pose_fusion`]).
     pub iterations: usize,
     /// Whether `mean` is a stationary point of the cost (the run it comes from ended
     /// with a step ≤ `converged_tolerance`·s; see [`pose_fusion`]).
@@ -62,14 +62,18 @@ fn fusion_terms<T: Real>(
 ///
 /// Method. V is smooth except across the cut locus of each `Tₖ` (a residual rotation
 /// of π, where the principal logarithm jumps), and when the poses disagree by tens of
-/// degrees it has several local minima. So the iteration runs from K + 1 starts (the
-/// identity, as pytransform3d, and every input pose) and returns the converged run of
-/// lowest cost (if none converged, the run of lowest cost, with `converged == false`).
-/// Each run takes Newton steps (exact Hessian: quadratic convergence, where
+/// degrees it has several local minima. A first run starts at the input pose of lowest
+/// cost. If it converges with every residual rotation below π/2 its result is returned
+/// (a heuristic that saves K runs where the poses agree; the reference problems below
+/// check its results). Otherwise the iteration also runs from the identity (as
+/// pytransform3d) and every other input pose, and the converged run of lowest cost is
+/// returned (if none converged, the run of lowest cost, with `converged == false`).
+/// Each run takes Gauss-Newton steps until one fails to shrink the step at least
+/// fourfold, then Newton steps (exact Hessian: quadratic convergence, where
 /// Gauss-Newton's approximate one converges linearly, at a rate near 1 for widely
-/// spread poses) while the Hessian is positive definite; elsewhere it takes the better
-/// of the Gauss-Newton and the saddle-free Newton step (`|H|⁻¹·g`). Every step is
-/// halved until the cost does not grow.
+/// spread poses) while the Hessian is positive definite; elsewhere the better of the
+/// Gauss-Newton and the saddle-free Newton step (`|H|⁻¹·g`). Every step is halved
+/// until the cost does not grow.
 ///
 /// Stopping rule and `converged`. With s = 1 + max‖pₖ‖ (the scale of the input
 /// translations, see [`IterationOptions`]), a run stops after a step of norm ≤
@@ -88,8 +92,9 @@ fn fusion_terms<T: Real>(
 /// fused estimate. (On such inputs pytransform3d's iteration cycles, with steps of 0.1
 /// to 1.5 even after 300 iterations; see `tests/fusion_golden.rs`.)
 ///
-/// Cost: K + 1 runs; each iteration evaluates the K residuals, their Jacobians and
-/// the gradient 13 times (12 for the Hessian) plus once per halving of the step.
+/// Cost: one run, or K + 1 (see Method); each iteration evaluates the K residuals, their
+/// Jacobians and the gradient once (Gauss-Newton) or 13 times (Newton: 12 for the
+/// Hessian), plus once per halving of the step.
 ///
 /// # Accuracy
 ///
@@ -155,15 +160,24 @@ pub fn pose_fusion<T: Real>(
         infos: &infos,
         scale: translation_scale(means),
     };
-    let mut best: Result<Run<T>, Error> = Err(Error::Singular);
-    for start in core::iter::once(Transform::identity()).chain(means.iter().copied()) {
-        let run = problem.descend(&start, options);
-        // A start that fails (overflow) does not spoil the others.
-        best = match (best, run) {
-            (Ok(b), Ok(r)) if !r.better_than(&b) => Ok(b),
-            (Ok(b), Err(_)) => Ok(b),
-            (_, run) => run,
-        };
+    let first = problem.lowest_cost(means);
+    let mut best = problem.descend(&first, options);
+    let half_pi = T::lit(core::f64::consts::FRAC_PI_2);
+    let settled =
+        matches!(&best, Ok(r) if r.converged && !problem.residual_above(&r.mean, half_pi));
+    if !settled {
+        for start in core::iter::once(Transform::identity()).chain(means.iter().copied()) {
+            if start == first {
+                continue;
+            }
+            let run = problem.descend(&start, options);
+            // A start that fails (overflow) does not spoil the others.
+            best = match (best, run) {
+                (Ok(b), Ok(r)) if !r.better_than(&b) => Ok(b),
+                (Ok(b), Err(_)) => Ok(b),
+                (_, run) => run,
+            };
+        }
     }
     let run = best?;
     let (info, _, cost) = run.terms;
@@ -229,8 +243,10 @@ impl<T: Real> Problem<'_, T> {
             converged: false,
         };
         let mut previous = T::infinity();
+        // Gauss-Newton until it contracts slowly, then Newton (see `steps`).
+        let mut newton = false;
         while run.iterations < options.max_iterations {
-            let (first, second) = self.steps(&run.mean, &run.terms)?;
+            let (first, second) = self.steps(&run.mean, &run.terms, newton)?;
             run.iterations += 1;
             let mut next: Option<(T, Transform<T>, Terms<T>)> = None;
             for step in core::iter::once(first).chain(second) {
@@ -253,6 +269,7 @@ impl<T: Real> Problem<'_, T> {
             if options.stop(norm, previous, self.scale) {
                 break;
             }
+            newton |= norm > previous * T::lit(0.25);
             previous = norm;
         }
         // Within √ε of a cut locus, rounding decides which branch of the logarithm, and
@@ -265,15 +282,33 @@ impl<T: Real> Problem<'_, T> {
 
     /// Whether a residual `Log(mean·Tₖ⁻¹)` has a rotation angle within √ε of π.
     fn on_cut_locus(&self, mean: &Transform<T>) -> bool {
-        let limit = T::lit(core::f64::consts::PI) - T::TOL;
+        self.residual_above(mean, T::lit(core::f64::consts::PI) - T::TOL)
+    }
+
+    /// Whether a residual `Log(mean·Tₖ⁻¹)` has a rotation angle above `limit`.
+    fn residual_above(&self, mean: &Transform<T>, limit: T) -> bool {
         self.means
             .iter()
             .any(|tk| se3::log(&(*mean * tk.inverse())).rotation().norm() > limit)
     }
 
-    /// The update steps `−H⁻¹·g` at `mean` for the gradient `g`: Newton's, with `H`
-    /// the Hessian of V in the left exponential coordinates at `mean`, where that is
-    /// positive definite; else Gauss-Newton's (`H` the information matrix) and, as an
+    /// The input pose of lowest cost (the first of them on ties).
+    fn lowest_cost(&self, means: &[Transform<T>]) -> Transform<T> {
+        let mut best = (means[0], self.terms(&means[0]).2);
+        for m in &means[1..] {
+            let cost = self.terms(m).2;
+            if cost < best.1 {
+                best = (*m, cost);
+            }
+        }
+        best.0
+    }
+
+    /// The update steps `−H⁻¹·g` at `mean` for the gradient `g`. Without `newton`,
+    /// Gauss-Newton's (`H` the information matrix), which costs one evaluation of the
+    /// terms where the Hessian costs 12 and suffices while the residuals are small. With
+    /// `newton`: Newton's, with `H` the Hessian of V in the left exponential coordinates
+    /// at `mean`, where that is positive definite; else Gauss-Newton's and, as an
     /// alternative, the saddle-free Newton step (`H`'s eigenvalues replaced by their
     /// absolute values, floored at √ε of the information matrix's largest element).
     ///
@@ -289,8 +324,13 @@ impl<T: Real> Problem<'_, T> {
         &self,
         mean: &Transform<T>,
         terms: &Terms<T>,
+        newton: bool,
     ) -> Result<(Vec6<T>, Option<Vec6<T>>), Error> {
         let (info, gradient, _) = terms;
+        let gauss_newton = -info.solve_spd(gradient).ok_or(Error::Singular)?;
+        if !newton {
+            return Ok((gauss_newton, None));
+        }
         let h = T::EPS.cbrt();
         let mut hessian = Mat6::zeros();
         for j in 0..6 {
@@ -307,7 +347,6 @@ impl<T: Real> Problem<'_, T> {
         if let Some(step) = hessian.solve_spd(gradient).filter(|s| s.is_finite()) {
             return Ok((-step, None));
         }
-        let gauss_newton = -info.solve_spd(gradient).ok_or(Error::Singular)?;
         let floor = info.amax() * T::TOL;
         let saddle_free = SymmetricEigen::new(&hessian)
             .ok()
