@@ -48,7 +48,7 @@ impl<T: Real> Default for IterationOptions<T> {
     /// at a step of 4·ε·s or when converged steps stop shrinking, converged below √ε·s
     /// (s: the scale of the data, see [`IterationOptions`]). 50 leaves a margin: on
     /// pytransform3d's 200 fusion reference problems the longest run that reaches a
-    /// stationary point takes 23 iterations (f32; 21 in f64,
+    /// stationary point takes 24 iterations (f64; 22 in f32,
     /// `tests/fusion_golden.rs`), and the Fréchet estimators used 50 already.
     fn default() -> Self {
         Self {

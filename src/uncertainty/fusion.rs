@@ -102,8 +102,8 @@ fn fusion_terms<T: Real>(
 /// pytransform3d's 200 reference problems (`tests/fusion_golden.rs`; 48 with poses up
 /// to 150° apart; a third of all with covariances of condition 10³–10⁶), measured against
 /// pytransform3d's fixed point wherever it has one (198 problems), error
-/// `max|a − b| / max(1, max|b|)`: f64 mean 4.3e-13, covariance 5.2e-15, V 5.1e-13; f32
-/// mean 6.8e-7 with well-conditioned covariances, and within 5.5× of the distance by
+/// `max|a − b| / max(1, max|b|)`: f64 mean 4.3e-13, covariance 3.8e-15, V 4.4e-13; f32
+/// mean 2.2e-6 with well-conditioned covariances, and within 5.5× of the distance by
 /// which rounding the inputs to f32 moves f64's answer with ill-conditioned ones.
 ///
 /// # Errors
