@@ -160,7 +160,7 @@ pub fn pose_fusion<T: Real>(
         infos: &infos,
         scale: translation_scale(means),
     };
-    let first = problem.lowest_cost(means);
+    let first = problem.lowest_cost();
     let mut best = problem.descend(&first, options);
     let half_pi = T::lit(core::f64::consts::FRAC_PI_2);
     let settled =
@@ -292,16 +292,17 @@ impl<T: Real> Problem<'_, T> {
             .any(|tk| se3::log(&(*mean * tk.inverse())).rotation().norm() > limit)
     }
 
-    /// The input pose of lowest cost (the first of them on ties).
-    fn lowest_cost(&self, means: &[Transform<T>]) -> Transform<T> {
-        let mut best = (means[0], self.terms(&means[0]).2);
-        for m in &means[1..] {
+    /// The input pose of lowest cost (the first of them on ties). Iterator-based, so no
+    /// index can panic (the firmware's panic-never check links this).
+    fn lowest_cost(&self) -> Transform<T> {
+        let mut best: Option<(Transform<T>, T)> = None;
+        for m in self.means {
             let cost = self.terms(m).2;
-            if cost < best.1 {
-                best = (*m, cost);
+            if best.is_none_or(|b| cost < b.1) {
+                best = Some((*m, cost));
             }
         }
-        best.0
+        best.map_or(Transform::identity(), |b| b.0)
     }
 
     /// The update steps `−H⁻¹·g` at `mean` for the gradient `g`. Without `newton`,
