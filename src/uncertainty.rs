@@ -27,10 +27,12 @@ use crate::scalar::Real;
 use crate::se3::Transform;
 
 mod estimate;
+mod fusion;
 pub use estimate::{
-    estimate_gaussian_rotation, estimate_gaussian_transform, frechet_mean, pose_fusion, Estimate,
-    Fusion, IterationOptions, LieGroup,
+    estimate_gaussian_rotation, estimate_gaussian_transform, frechet_mean, Estimate,
+    IterationOptions, LieGroup,
 };
+pub use fusion::{pose_fusion, Fusion};
 
 /// The order of the covariance compounding in [`concat_globally`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
