@@ -8,6 +8,7 @@
 //! `∂ℓ/∂x_a = w_a·(yₚ·y_q − (Kₜₜ)ₚq)` and
 //! `F_ab = w_a·w_b·((Kₜₛ)_qr·(Kₜₛ)ₚₛ + (Kₜₛ)_qs·(Kₜₛ)ₚr)`.
 
+use crate::fisher::FisherSum;
 use crate::samples::Prepared;
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 
@@ -20,7 +21,8 @@ pub(crate) struct Unit {
 }
 
 impl Unit {
-    fn weight(&self) -> f64 {
+    /// 1 for p < q, ½ for p = q (the unit's two or one entries).
+    pub fn weight(&self) -> f64 {
         if self.p == self.q {
             0.5
         } else {
@@ -141,6 +143,7 @@ impl Design {
             mahalanobis: Vec::with_capacity(self.eta.len()),
         };
         let mut used = 0usize;
+        let mut fisher = FisherSum::new(&self.m);
         for (k, eta) in self.eta.iter().enumerate() {
             let chol = self.sigma(k, x).cholesky()?;
             let lo = chol.l();
@@ -155,10 +158,11 @@ impl Design {
             let y: Vec<Vector6<f64>> = b.iter().map(|bt| bt.transpose() * z).collect();
             self.gradient(&y, |t| b[t].transpose() * b[t], &mut out.grad);
             if k % stride == 0 {
-                self.fisher(&b, &mut out.fisher);
+                fisher.add(&b);
                 used += 1;
             }
         }
+        fisher.write(&self.units, &mut out.fisher);
         out.fisher.fill_lower_triangle_with_upper_triangle();
         out.fisher *= self.eta.len() as f64 / used.max(1) as f64;
         out.loglik.is_finite().then_some(out)
@@ -209,12 +213,14 @@ impl Design {
             fisher: DMatrix::zeros(u, u),
             mahalanobis: Vec::new(),
         };
+        let mut fisher = FisherSum::new(&self.m);
         for (k, eta) in self.eta.iter().enumerate() {
             let b = &self.a[k];
             let y: Vec<Vector6<f64>> = b.iter().map(|bt| bt.transpose() * eta).collect();
             self.gradient(&y, |t| b[t].transpose() * self.r * b[t], &mut out.grad);
-            self.fisher(b, &mut out.fisher);
+            fisher.add(b);
         }
+        fisher.write(&self.units, &mut out.fisher);
         out.fisher.fill_lower_triangle_with_upper_triangle();
         (out.fisher, out.grad)
     }
@@ -236,27 +242,6 @@ impl Design {
             grad[ia] += a.weight() * (y[a.term][a.p] * y[a.term][a.q] - kd[(a.p, a.q)]);
         }
     }
-
-    /// Adds one sample's Fisher information (upper triangle).
-    fn fisher(&self, b: &[Matrix6<f64>], fisher: &mut DMatrix<f64>) {
-        let terms = self.m.len();
-        // Kₜₛ for t ≤ s, row-major arrays for the inner loop.
-        let mut kts = vec![[[0.0f64; 6]; 6]; terms * terms];
-        for t in 0..terms {
-            for s in t..terms {
-                let k = b[t].transpose() * b[s];
-                kts[t * terms + s] = std::array::from_fn(|i| std::array::from_fn(|j| k[(i, j)]));
-            }
-        }
-        for (ia, a) in self.units.iter().enumerate() {
-            let wa = a.weight();
-            for (ib, bu) in self.units.iter().enumerate().skip(ia) {
-                let k = &kts[a.term * terms + bu.term];
-                let v = k[a.q][bu.p] * k[a.p][bu.q] + k[a.q][bu.q] * k[a.p][bu.p];
-                fisher[(ia, ib)] += wa * bu.weight() * v;
-            }
-        }
-    }
 }
 
 #[cfg(test)]
@@ -264,9 +249,8 @@ mod tests {
     use super::*;
     use crate::samples::Prepared;
 
-    /// The closed-form gradient against central differences of the log-likelihood.
-    #[test]
-    fn gradient_matches_differences() {
+    /// Twenty made-up samples of a two-joint design.
+    fn prepared() -> Prepared {
         let mut prepared = Prepared {
             eta: Vec::new(),
             transports: Vec::new(),
@@ -292,26 +276,37 @@ mod tests {
                     .collect(),
             );
         }
+        prepared
+    }
+
+    /// Positive definite coefficient matrices for every term of `d`.
+    fn coefficients(d: &Design) -> Vec<Matrix6<f64>> {
+        d.m.iter()
+            .enumerate()
+            .map(|(t, &m)| {
+                let mut a = Matrix6::from_fn(|r, c| {
+                    if r < m && c < m {
+                        ((r + 2 * c + t) as f64).sin() * 0.1
+                    } else {
+                        0.0
+                    }
+                });
+                a = a * a.transpose() * 1e-3;
+                for i in 0..m {
+                    a[(i, i)] += 1e-4;
+                }
+                a
+            })
+            .collect()
+    }
+
+    /// The closed-form gradient against central differences of the log-likelihood.
+    #[test]
+    fn gradient_matches_differences() {
+        let prepared = prepared();
         for joint_model in [true, false] {
             let d = Design::new(&prepared, joint_model, true, Matrix6::identity() * 1e-6);
-            let x: Vec<Matrix6<f64>> =
-                d.m.iter()
-                    .enumerate()
-                    .map(|(t, &m)| {
-                        let mut a = Matrix6::from_fn(|r, c| {
-                            if r < m && c < m {
-                                ((r + 2 * c + t) as f64).sin() * 0.1
-                            } else {
-                                0.0
-                            }
-                        });
-                        a = a * a.transpose() * 1e-3;
-                        for i in 0..m {
-                            a[(i, i)] += 1e-4;
-                        }
-                        a
-                    })
-                    .collect();
+            let x = coefficients(&d);
             let mo = d.moments(&x, 1).unwrap();
             for (ia, u) in d.units.iter().enumerate() {
                 let h = 1e-7;
@@ -330,6 +325,39 @@ mod tests {
                     "{joint_model} unit {u:?}: {num} vs {}",
                     mo.grad[ia]
                 );
+            }
+        }
+    }
+
+    /// The Fisher information against its definition for a Gaussian of covariance
+    /// Σ(x): `F_ab = ½·Σₖ tr(Σₖ⁻¹·∂Σₖ/∂x_a·Σₖ⁻¹·∂Σₖ/∂x_b)`, with dense inverses.
+    #[test]
+    fn fisher_matches_definition() {
+        let prepared = prepared();
+        for joint_model in [true, false] {
+            let d = Design::new(&prepared, joint_model, true, Matrix6::identity() * 1e-6);
+            let x = coefficients(&d);
+            let fisher = d.moments(&x, 1).unwrap().fisher;
+            let derivative = |k: usize, u: &Unit| {
+                let mut e = Matrix6::zeros();
+                e[(u.p, u.q)] = 1.0;
+                e[(u.q, u.p)] = 1.0;
+                d.a[k][u.term] * e * d.a[k][u.term].transpose()
+            };
+            for (ia, ua) in d.units.iter().enumerate() {
+                for (ib, ub) in d.units.iter().enumerate() {
+                    let mut want = 0.0;
+                    for k in 0..d.eta.len() {
+                        let inv = d.sigma(k, &x).try_inverse().unwrap();
+                        let m = inv * derivative(k, ua) * inv * derivative(k, ub);
+                        want += 0.5 * m.trace();
+                    }
+                    let got = fisher[(ia, ib)];
+                    assert!(
+                        (got - want).abs() <= 1e-9 * want.abs().max(1.0),
+                        "{joint_model} ({ia}, {ib}): {got} vs {want}"
+                    );
+                }
             }
         }
     }

@@ -56,6 +56,7 @@
 
 mod design;
 mod error;
+mod fisher;
 mod optimize;
 mod param;
 mod report;

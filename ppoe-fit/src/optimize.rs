@@ -31,32 +31,50 @@ pub(crate) struct Outcome {
     pub stalled_at_optimum: bool,
 }
 
-/// `(F + μ·λ_max)⁺·g` with F scaled to unit diagonal, eigenvalues below 1e-9 of the
-/// largest dropped (as in the rank of the report).
-fn scoring_step(f: &DMatrix<f64>, g: &DVector<f64>, mu: f64) -> DVector<f64> {
-    let p = f.nrows();
-    let d: Vec<f64> = (0..p)
-        .map(|i| {
-            let v = f[(i, i)];
-            if v > 0.0 {
-                1.0 / v.sqrt()
-            } else {
-                0.0
-            }
-        })
-        .collect();
-    let s = DMatrix::from_fn(p, p, |i, j| f[(i, j)] * d[i] * d[j]);
-    let gs = DVector::from_fn(p, |i, _| g[i] * d[i]);
-    let e = s.symmetric_eigen();
-    let top = e.eigenvalues.max().max(1e-300);
-    let mut step = DVector::zeros(p);
-    for (k, &lam) in e.eigenvalues.iter().enumerate() {
-        if lam > crate::report::RANK_TOL * top {
-            let v = e.eigenvectors.column(k);
-            step += v * (v.dot(&gs) / (lam + mu * top));
-        }
+/// The scaled Fisher information's eigen-decomposition, computed once per iteration and
+/// shared by the damped steps tried in it (only μ changes between them).
+struct Scoring {
+    /// 1/√F_ii (0 where F_ii = 0): the scaling to unit diagonal.
+    d: Vec<f64>,
+    eigen: nalgebra::SymmetricEigen<f64, nalgebra::Dyn>,
+    top: f64,
+    /// The scaled gradient.
+    gs: DVector<f64>,
+}
+
+impl Scoring {
+    fn new(f: &DMatrix<f64>, g: &DVector<f64>) -> Self {
+        let p = f.nrows();
+        let d: Vec<f64> = (0..p)
+            .map(|i| {
+                let v = f[(i, i)];
+                if v > 0.0 {
+                    1.0 / v.sqrt()
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let s = DMatrix::from_fn(p, p, |i, j| f[(i, j)] * d[i] * d[j]);
+        let gs = DVector::from_fn(p, |i, _| g[i] * d[i]);
+        let eigen = s.symmetric_eigen();
+        let top = eigen.eigenvalues.max().max(1e-300);
+        Self { d, eigen, top, gs }
     }
-    DVector::from_fn(p, |i, _| step[i] * d[i])
+
+    /// `(F + μ·λ_max)⁺·g` with F scaled to unit diagonal, eigenvalues below 1e-9 of the
+    /// largest dropped (as in the rank of the report).
+    fn step(&self, mu: f64) -> DVector<f64> {
+        let p = self.d.len();
+        let mut step = DVector::zeros(p);
+        for (k, &lam) in self.eigen.eigenvalues.iter().enumerate() {
+            if lam > crate::report::RANK_TOL * self.top {
+                let v = self.eigen.eigenvectors.column(k);
+                step += v * (v.dot(&self.gs) / (lam + mu * self.top));
+            }
+        }
+        DVector::from_fn(p, |i, _| step[i] * self.d[i])
+    }
 }
 
 /// Full model: `θ + t·Δ` with t ≤ 1 halved until no term's coefficient matrix changes by more than
@@ -92,7 +110,7 @@ fn trusted(param: &Param, theta: &DVector<f64>, step: DVector<f64>) -> DVector<f
 }
 
 /// The gradient and Fisher information in θ; parameters held at their bound leave the
-/// step (zero rows, dropped by the scaling in `scoring_step`).
+/// step (zero rows, dropped by the scaling in `Scoring`).
 fn metric(
     design: &Design,
     param: &Param,
@@ -134,9 +152,10 @@ pub(crate) fn maximize(
     while iterations < MAX_ITERATIONS && !converged {
         iterations += 1;
         let (g, f) = metric(design, param, &theta, stride)?;
+        let scoring = Scoring::new(&f, &g);
         let mut moved = false;
         while mu < 1e3 {
-            let step = scoring_step(&f, &g, mu);
+            let step = scoring.step(mu);
             let gain = 0.5 * g.dot(&step);
             let cand = trusted(param, &theta, step);
             // The step actually taken (bounds may clip it).
