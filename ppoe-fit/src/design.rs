@@ -111,11 +111,35 @@ impl Design {
 
     /// Σ for sample k with coefficient matrices `x` (one per term).
     pub fn sigma(&self, k: usize, x: &[Matrix6<f64>]) -> Matrix6<f64> {
-        let mut s = self.r;
-        for (a, xt) in self.a[k].iter().zip(x) {
-            s += a * xt * a.transpose();
+        // Column-major slices and the upper triangle only: Σ is symmetric, and only the
+        // first m rows and columns of each Xₜ are coefficients (zero elsewhere).
+        let mut s = [0.0f64; 36];
+        for ((a, xt), &m) in self.a[k].iter().zip(x).zip(&self.m) {
+            let (a, xt) = (a.as_slice(), xt.as_slice());
+            // Y = Aₜ·Xₜ, column c at y[6c..6c + 6].
+            let mut y = [0.0f64; 36];
+            for c in 0..m {
+                for j in 0..m {
+                    let xjc = xt[6 * c + j];
+                    for r in 0..6 {
+                        y[6 * c + r] += a[6 * j + r] * xjc;
+                    }
+                }
+            }
+            // Σ += Y·Aₜᵀ (upper triangle, column r2 at s[6·r2..]).
+            for c in 0..m {
+                for r2 in 0..6 {
+                    let a2 = a[6 * c + r2];
+                    for r1 in 0..=r2 {
+                        s[6 * r2 + r1] += y[6 * c + r1] * a2;
+                    }
+                }
+            }
         }
-        s
+        Matrix6::from_fn(|r, c| {
+            let (lo, hi) = (r.min(c), r.max(c));
+            self.r[(r, c)] + s[6 * hi + lo]
+        })
     }
 
     /// The log-likelihood alone; `None` if some Σ is not positive definite.
@@ -348,7 +372,11 @@ mod tests {
                 for (ib, ub) in d.units.iter().enumerate() {
                     let mut want = 0.0;
                     for k in 0..d.eta.len() {
-                        let inv = d.sigma(k, &x).try_inverse().unwrap();
+                        let sigma = d.a[k]
+                            .iter()
+                            .zip(&x)
+                            .fold(d.r, |s, (a, xt)| s + a * xt * a.transpose());
+                        let inv = sigma.try_inverse().unwrap();
                         let m = inv * derivative(k, ua) * inv * derivative(k, ub);
                         want += 0.5 * m.trace();
                     }

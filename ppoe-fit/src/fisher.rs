@@ -78,8 +78,8 @@ impl FisherSum {
         for (ia, a) in units.iter().enumerate() {
             for (ib, b) in units.iter().enumerate().skip(ia) {
                 let (t, s) = (a.term, b.term);
-                let v = self.get(t, s, (a.q, b.p), (a.p, b.q))
-                    + self.get(t, s, (a.q, b.q), (a.p, b.p));
+                let v =
+                    self.get(t, s, (a.q, b.p), (a.p, b.q)) + self.get(t, s, (a.q, b.q), (a.p, b.p));
                 fisher[(ia, ib)] += a.weight() * b.weight() * v;
             }
         }
