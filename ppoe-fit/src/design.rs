@@ -9,6 +9,7 @@
 //! `F_ab = w_a·w_b·((Kₜₛ)_qr·(Kₜₛ)ₚₛ + (Kₜₛ)_qs·(Kₜₛ)ₚr)`.
 
 use crate::fisher::FisherSum;
+use crate::parallel::chunks;
 use crate::samples::Prepared;
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 
@@ -55,6 +56,12 @@ pub(crate) struct Moments {
 }
 
 const LN_2PI: f64 = 1.837_877_066_409_345_5;
+
+/// One sample's Gaussian log-density from Σ's factor L and z = L⁻¹η.
+fn gaussian_loglik(lo: &Matrix6<f64>, z: &Vector6<f64>) -> f64 {
+    let logdet: f64 = 2.0 * (0..6).map(|i| lo[(i, i)].ln()).sum::<f64>();
+    -0.5 * (logdet + z.norm_squared() + 6.0 * LN_2PI)
+}
 
 impl Design {
     /// The design of the joint model (one term per joint, Aᵢ = Ad(Gᵢ⁻¹)·Sᵢ, m = 1) plus a
@@ -144,15 +151,23 @@ impl Design {
 
     /// The log-likelihood alone; `None` if some Σ is not positive definite.
     pub fn loglik(&self, x: &[Matrix6<f64>]) -> Option<f64> {
-        let mut l = 0.0;
-        for (k, eta) in self.eta.iter().enumerate() {
-            let chol = self.sigma(k, x).cholesky()?;
-            let lo = chol.l();
-            let z = lo.solve_lower_triangular(eta)?;
-            let logdet: f64 = 2.0 * (0..6).map(|i| lo[(i, i)].ln()).sum::<f64>();
-            l -= 0.5 * (logdet + z.norm_squared() + 6.0 * LN_2PI);
-        }
+        let parts = chunks(self.eta.len(), |range| {
+            let mut l = 0.0;
+            for k in range {
+                let (lo, z) = self.whiten(k, x)?;
+                l += gaussian_loglik(&lo, &z);
+            }
+            Some(l)
+        });
+        let l = parts.into_iter().sum::<Option<f64>>()?;
         l.is_finite().then_some(l)
+    }
+
+    /// Σₖ = LLᵀ's factor and the whitened residual z = L⁻¹ηₖ.
+    fn whiten(&self, k: usize, x: &[Matrix6<f64>]) -> Option<(Matrix6<f64>, Vector6<f64>)> {
+        let lo = self.sigma(k, x).cholesky()?.l();
+        let z = lo.solve_lower_triangular(&self.eta[k])?;
+        Some((lo, z))
     }
 
     /// Log-likelihood, gradient and Fisher information at `x`, the Fisher information
@@ -168,16 +183,43 @@ impl Design {
         };
         let mut used = 0usize;
         let mut fisher = FisherSum::new(&self.m);
-        for (k, eta) in self.eta.iter().enumerate() {
-            let chol = self.sigma(k, x).cholesky()?;
-            let lo = chol.l();
-            let z = lo.solve_lower_triangular(eta)?;
+        for part in chunks(self.eta.len(), |range| self.moments_of(x, stride, range)) {
+            let (part, part_fisher, part_used) = part?;
+            out.loglik += part.loglik;
+            out.grad += part.grad;
+            out.mahalanobis.extend(part.mahalanobis);
+            fisher.merge(&part_fisher);
+            used += part_used;
+        }
+        fisher.write(&self.units, &mut out.fisher);
+        out.fisher.fill_lower_triangle_with_upper_triangle();
+        out.fisher *= self.eta.len() as f64 / used.max(1) as f64;
+        out.loglik.is_finite().then_some(out)
+    }
+
+    /// The moments' sums over the samples `range` (Fisher information as its sum, with
+    /// the number of samples in it).
+    fn moments_of(
+        &self,
+        x: &[Matrix6<f64>],
+        stride: usize,
+        range: std::ops::Range<usize>,
+    ) -> Option<(Moments, FisherSum, usize)> {
+        let mut out = Moments {
+            loglik: 0.0,
+            grad: DVector::zeros(self.units.len()),
+            fisher: DMatrix::zeros(0, 0),
+            mahalanobis: Vec::with_capacity(range.len()),
+        };
+        let mut used = 0usize;
+        let mut fisher = FisherSum::new(&self.m);
+        for k in range {
+            let (lo, z) = self.whiten(k, x)?;
             let b: Vec<Matrix6<f64>> = self.a[k]
                 .iter()
                 .map(|a| lo.solve_lower_triangular(a))
                 .collect::<Option<_>>()?;
-            let logdet: f64 = 2.0 * (0..6).map(|i| lo[(i, i)].ln()).sum::<f64>();
-            out.loglik -= 0.5 * (logdet + z.norm_squared() + 6.0 * LN_2PI);
+            out.loglik += gaussian_loglik(&lo, &z);
             out.mahalanobis.push(z.norm_squared());
             let y: Vec<Vector6<f64>> = b.iter().map(|bt| bt.transpose() * z).collect();
             self.gradient(&y, |t| b[t].transpose() * b[t], &mut out.grad);
@@ -186,10 +228,7 @@ impl Design {
                 used += 1;
             }
         }
-        fisher.write(&self.units, &mut out.fisher);
-        out.fisher.fill_lower_triangle_with_upper_triangle();
-        out.fisher *= self.eta.len() as f64 / used.max(1) as f64;
-        out.loglik.is_finite().then_some(out)
+        Some((out, fisher, used))
     }
 
     /// One EM step for the latent per-term noise ξₜ ~ N(0, Xₜ), η = Σₜ Aₜξₜ + ν:
@@ -197,19 +236,26 @@ impl Design {
     /// second moment of ξₜ averaged), which keeps every Xₜ PSD and never lowers the
     /// likelihood. Returns the new coefficients and the log-likelihood at `x`.
     pub fn em_step(&self, x: &[Matrix6<f64>]) -> Option<(Vec<Matrix6<f64>>, f64)> {
+        let parts = chunks(self.eta.len(), |range| {
+            let mut g = vec![Matrix6::zeros(); self.m.len()];
+            let mut loglik = 0.0;
+            for k in range {
+                let (lo, z) = self.whiten(k, x)?;
+                loglik += gaussian_loglik(&lo, &z);
+                for (gt, a) in g.iter_mut().zip(&self.a[k]) {
+                    let b = lo.solve_lower_triangular(a)?;
+                    let y = b.transpose() * z;
+                    *gt += y * y.transpose() - b.transpose() * b;
+                }
+            }
+            Some((g, loglik))
+        });
         let mut g = vec![Matrix6::zeros(); self.m.len()];
         let mut loglik = 0.0;
-        for (k, eta) in self.eta.iter().enumerate() {
-            let chol = self.sigma(k, x).cholesky()?;
-            let lo = chol.l();
-            let z = lo.solve_lower_triangular(eta)?;
-            let logdet: f64 = 2.0 * (0..6).map(|i| lo[(i, i)].ln()).sum::<f64>();
-            loglik -= 0.5 * (logdet + z.norm_squared() + 6.0 * LN_2PI);
-            for (gt, a) in g.iter_mut().zip(&self.a[k]) {
-                let b = lo.solve_lower_triangular(a)?;
-                let y = b.transpose() * z;
-                *gt += y * y.transpose() - b.transpose() * b;
-            }
+        for part in parts {
+            let (part_g, part_l) = part?;
+            g.iter_mut().zip(&part_g).for_each(|(gt, pt)| *gt += pt);
+            loglik += part_l;
         }
         let n = self.eta.len() as f64;
         let next = x

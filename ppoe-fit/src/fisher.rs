@@ -63,6 +63,14 @@ impl FisherSum {
         }
     }
 
+    /// Adds another sum over other samples (same terms).
+    pub fn merge(&mut self, other: &FisherSum) {
+        self.sums
+            .iter_mut()
+            .zip(&other.sums)
+            .for_each(|(s, o)| *s += o);
+    }
+
     /// Σₖ (Kₜₛ)ᵢⱼ·(Kₜₛ)ₖₗ from pair (t, s)'s upper triangle.
     fn get(&self, t: usize, s: usize, (i, j): (usize, usize), (k, l): (usize, usize)) -> f64 {
         let terms = self.m.len();

@@ -58,6 +58,7 @@ mod design;
 mod error;
 mod fisher;
 mod optimize;
+mod parallel;
 mod param;
 mod report;
 mod samples;
