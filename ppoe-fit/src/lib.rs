@@ -56,7 +56,9 @@
 
 mod design;
 mod error;
+mod fisher;
 mod optimize;
+mod parallel;
 mod param;
 mod report;
 mod samples;

@@ -31,32 +31,50 @@ pub(crate) struct Outcome {
     pub stalled_at_optimum: bool,
 }
 
-/// `(F + μ·λ_max)⁺·g` with F scaled to unit diagonal, eigenvalues below 1e-9 of the
-/// largest dropped (as in the rank of the report).
-fn scoring_step(f: &DMatrix<f64>, g: &DVector<f64>, mu: f64) -> DVector<f64> {
-    let p = f.nrows();
-    let d: Vec<f64> = (0..p)
-        .map(|i| {
-            let v = f[(i, i)];
-            if v > 0.0 {
-                1.0 / v.sqrt()
-            } else {
-                0.0
-            }
-        })
-        .collect();
-    let s = DMatrix::from_fn(p, p, |i, j| f[(i, j)] * d[i] * d[j]);
-    let gs = DVector::from_fn(p, |i, _| g[i] * d[i]);
-    let e = s.symmetric_eigen();
-    let top = e.eigenvalues.max().max(1e-300);
-    let mut step = DVector::zeros(p);
-    for (k, &lam) in e.eigenvalues.iter().enumerate() {
-        if lam > crate::report::RANK_TOL * top {
-            let v = e.eigenvectors.column(k);
-            step += v * (v.dot(&gs) / (lam + mu * top));
-        }
+/// The scaled Fisher information's eigen-decomposition, computed once per iteration and
+/// shared by the damped steps tried in it (only μ changes between them).
+struct Scoring {
+    /// 1/√F_ii (0 where F_ii = 0): the scaling to unit diagonal.
+    d: Vec<f64>,
+    eigen: nalgebra::SymmetricEigen<f64, nalgebra::Dyn>,
+    top: f64,
+    /// The scaled gradient.
+    gs: DVector<f64>,
+}
+
+impl Scoring {
+    fn new(f: &DMatrix<f64>, g: &DVector<f64>) -> Self {
+        let p = f.nrows();
+        let d: Vec<f64> = (0..p)
+            .map(|i| {
+                let v = f[(i, i)];
+                if v > 0.0 {
+                    1.0 / v.sqrt()
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let s = DMatrix::from_fn(p, p, |i, j| f[(i, j)] * d[i] * d[j]);
+        let gs = DVector::from_fn(p, |i, _| g[i] * d[i]);
+        let eigen = s.symmetric_eigen();
+        let top = eigen.eigenvalues.max().max(1e-300);
+        Self { d, eigen, top, gs }
     }
-    DVector::from_fn(p, |i, _| step[i] * d[i])
+
+    /// `(F + μ·λ_max)⁺·g` with F scaled to unit diagonal, eigenvalues below 1e-9 of the
+    /// largest dropped (as in the rank of the report).
+    fn step(&self, mu: f64) -> DVector<f64> {
+        let p = self.d.len();
+        let mut step = DVector::zeros(p);
+        for (k, &lam) in self.eigen.eigenvalues.iter().enumerate() {
+            if lam > crate::report::RANK_TOL * self.top {
+                let v = self.eigen.eigenvectors.column(k);
+                step += v * (v.dot(&self.gs) / (lam + mu * self.top));
+            }
+        }
+        DVector::from_fn(p, |i, _| step[i] * self.d[i])
+    }
 }
 
 /// Full model: `θ + t·Δ` with t ≤ 1 halved until no term's coefficient matrix changes by more than
@@ -92,7 +110,7 @@ fn trusted(param: &Param, theta: &DVector<f64>, step: DVector<f64>) -> DVector<f
 }
 
 /// The gradient and Fisher information in θ; parameters held at their bound leave the
-/// step (zero rows, dropped by the scaling in `scoring_step`).
+/// step (zero rows, dropped by the scaling in `Scoring`).
 fn metric(
     design: &Design,
     param: &Param,
@@ -113,11 +131,81 @@ fn metric(
     Ok((g, f))
 }
 
-/// Maximises the likelihood from `theta`; `progress(iteration, loglik)` after each step.
+/// When to give up on a scoring run that still gains, but slowly: once the last `window`
+/// accepted steps together gained less than `gain`. The full model's scoring can crawl
+/// for hundreds of steps towards covariances of lower rank (log-Cholesky diagonals
+/// heading to −∞) gaining 10⁻³ each; the caller's rounds of EM and scoring decide
+/// convergence.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Crawl {
+    pub window: usize,
+    pub gain: f64,
+}
+
+impl Crawl {
+    /// Whether `history` (the log-likelihood after each accepted step) ends in a crawl.
+    fn crawling(&self, history: &[f64]) -> bool {
+        let n = history.len();
+        n > self.window && history[n - 1] - history[n - 1 - self.window] < self.gain
+    }
+}
+
+/// What one iteration's damped steps came to.
+enum Trial {
+    /// The full step's predicted gain is below `GAIN_TOL`: nothing to do.
+    Converged,
+    /// A step that does not lower the likelihood (`converged`: it gained next to nothing).
+    Moved {
+        theta: DVector<f64>,
+        loglik: f64,
+        converged: bool,
+    },
+    /// No step up to the largest damping improves.
+    Stuck,
+}
+
+/// One iteration's damped steps: μ raised tenfold until a step does not lower the
+/// likelihood, and lowered tenfold after one that does not (for the next iteration).
+fn damped(
+    design: &Design,
+    param: &Param,
+    (theta, loglik): (&DVector<f64>, f64),
+    g: &DVector<f64>,
+    scoring: &Scoring,
+    mu: &mut f64,
+) -> Trial {
+    while *mu < 1e3 {
+        let step = scoring.step(*mu);
+        let gain = 0.5 * g.dot(&step);
+        let cand = trusted(param, theta, step);
+        // The step actually taken (bounds may clip it).
+        let gain = gain.min(0.5 * g.dot(&(&cand - theta)));
+        if gain < GAIN_TOL && *mu <= 1e-6 {
+            return Trial::Converged;
+        }
+        match design.loglik(&param.coeffs(&cand)) {
+            Some(l) if l >= loglik => {
+                let converged = l - loglik < GAIN_TOL && gain < GAIN_TOL && *mu <= 1e-6;
+                *mu = (*mu * 0.1).max(1e-9);
+                return Trial::Moved {
+                    theta: cand,
+                    loglik: l,
+                    converged,
+                };
+            }
+            _ => *mu *= 10.0,
+        }
+    }
+    Trial::Stuck
+}
+
+/// Maximises the likelihood from `theta`; `progress(iteration, loglik)` after each step;
+/// stops early (not converged) on a `crawl`.
 pub(crate) fn maximize(
     design: &Design,
     param: &Param,
     mut theta: DVector<f64>,
+    crawl: Option<Crawl>,
     progress: &mut dyn FnMut(usize, f64),
 ) -> Result<Outcome, FitError> {
     let stride = design.eta.len().div_ceil(FISHER_SAMPLES).max(1);
@@ -126,47 +214,37 @@ pub(crate) fn maximize(
             "the starting covariances give a singular Σ for some sample".into(),
         ));
     };
-    let mut converged = false;
-    let mut iterations = 0;
-    let mut mu = 1e-6;
+    let (mut converged, mut iterations, mut mu) = (false, 0, 1e-6);
     let mut last_gain = f64::INFINITY;
     let mut stalled_at_optimum = false;
+    let mut history = vec![loglik];
     while iterations < MAX_ITERATIONS && !converged {
         iterations += 1;
         let (g, f) = metric(design, param, &theta, stride)?;
-        let mut moved = false;
-        while mu < 1e3 {
-            let step = scoring_step(&f, &g, mu);
-            let gain = 0.5 * g.dot(&step);
-            let cand = trusted(param, &theta, step);
-            // The step actually taken (bounds may clip it).
-            let gain = gain.min(0.5 * g.dot(&(&cand - &theta)));
-            if gain < GAIN_TOL && mu <= 1e-6 {
-                converged = true;
+        let scoring = Scoring::new(&f, &g);
+        match damped(design, param, (&theta, loglik), &g, &scoring, &mut mu) {
+            Trial::Converged => converged = true,
+            Trial::Moved {
+                theta: t,
+                loglik: l,
+                converged: c,
+            } => {
+                (last_gain, theta, loglik, converged) = (l - loglik, t, l, c);
+                if !c {
+                    progress(iterations, loglik);
+                    history.push(loglik);
+                    if crawl.is_some_and(|cr| cr.crawling(&history)) {
+                        break;
+                    }
+                }
+            }
+            Trial::Stuck => {
+                progress(iterations, loglik);
+                // No step improves: at the optimum within rounding if the last one
+                // gained next to nothing.
+                stalled_at_optimum = last_gain < GAIN_TOL;
                 break;
             }
-            match design.loglik(&param.coeffs(&cand)) {
-                Some(l) if l >= loglik => {
-                    converged = l - loglik < GAIN_TOL && gain < GAIN_TOL && mu <= 1e-6;
-                    last_gain = l - loglik;
-                    theta = cand;
-                    loglik = l;
-                    moved = true;
-                    mu = (mu * 0.1).max(1e-9);
-                    break;
-                }
-                _ => mu *= 10.0,
-            }
-        }
-        if converged {
-            break;
-        }
-        progress(iterations, loglik);
-        if !moved {
-            // No step improves: at the optimum within rounding if the last one gained
-            // next to nothing.
-            stalled_at_optimum = last_gain < GAIN_TOL;
-            break;
         }
     }
     Ok(Outcome {

@@ -3,7 +3,7 @@
 
 use crate::design::Design;
 use crate::error::FitError;
-use crate::optimize::maximize;
+use crate::optimize::{maximize, Crawl};
 use crate::param::{unit_matrix, Model, Param};
 use crate::report::{goodness_of_fit, information, GoodnessOfFit, Information};
 use crate::samples::{prepare, to_na, transports, Prepared, Sample};
@@ -19,6 +19,12 @@ use ppoe::{Mat6, Transform};
 const EM_CYCLES: usize = 15;
 const ROUNDS: usize = 12;
 const ROUND_TOL: f64 = 0.5;
+/// A round's scoring stops once 10 steps gained less than a tenth of `ROUND_TOL`: at that
+/// pace it would need over a hundred steps to gain what counts as nothing.
+const CRAWL: Crawl = Crawl {
+    window: 10,
+    gain: 0.1 * ROUND_TOL,
+};
 
 /// The full model: rounds of a few EM cycles (monotone and PSD: they bring a start whose
 /// Σ is nearly singular, or a scoring run stalled at covariances of lower rank, to where
@@ -34,7 +40,7 @@ fn full_rounds(
     for round in 0..ROUNDS {
         let (x, _, cycles, _) =
             crate::optimize::em(design, param.coeffs(&theta), EM_CYCLES, progress)?;
-        let mut out = maximize(design, param, param.theta_of(&x), progress)?;
+        let mut out = maximize(design, param, param.theta_of(&x), Some(CRAWL), progress)?;
         iterations += cycles + out.iterations;
         out.converged |= out.loglik - last < ROUND_TOL;
         if out.converged || round + 1 == ROUNDS {
@@ -152,7 +158,7 @@ pub fn fit(
     let out = if model == Model::Full {
         full_rounds(&design, &param, theta0, progress)?
     } else {
-        let mut out = maximize(&design, &param, theta0, progress)?;
+        let mut out = maximize(&design, &param, theta0, None, progress)?;
         out.converged |= out.stalled_at_optimum;
         out
     };
