@@ -534,8 +534,8 @@ def render(d):
         p("`scripts/flops.py` counts the PPOE's floating-point operations from the source (hand count,")
         p("documented per function there): per joint %d multiplies + %d adds, %d divisions, %d square root, %d sin_cos;"
           % (pj["mul"], pj["add"], pj["div"], pj["sqrt"], pj["sin_cos"]))
-        p("plus %d + %d after the loop (summing the %d SIMD lanes of the accumulator; padding lanes of a"
-          " last incomplete group count as computed). 6-DOF total: **%d multiplies + %d adds = %d flops**,"
+        p("plus %d + %d after the loop (summing the %d f64 SIMD lanes of the accumulator; a last incomplete"
+          " group runs one lane at a time). 6-DOF total: **%d multiplies + %d adds = %d flops**,"
           % (fl["tail"]["mul"], fl["tail"]["add"], fl.get("lanes", 1), t["mul"], t["add"], fl["flops_mul_add"]))
         p("%d divisions, %d square roots, %d sin_cos." % (t["div"], t["sqrt"], t["sin_cos"]))
         p("")
@@ -686,8 +686,8 @@ def render(d):
           " tolerances; `git log` has the before/after figures): accumulation in the tip frame from"
           " the tip backwards (no transport after the loop, lever arms from each joint to the tip),"
           " a shear-first structured transport accumulated into one triangle (no 6×6 temporaries),"
-          " independent transports packed into SIMD lanes (the private lane width, `lanes` in src/transport.rs: 2 on SSE2/NEON,"
-          " for f32 too), the joints taken in groups of two whose congruences and covariances are"
+          " independent transports packed into SIMD lanes (the private lane width, `lanes` in src/transport.rs: one"
+          " 128-bit register on SSE2/NEON, 2 f64 or 4 f32 lanes), the joints taken in groups whose congruences and covariances are"
           " gathered into lanes straight from registers (a queue in memory made the gathers wait on"
           " store forwarding), per-joint displacement constants computed once (`JointConstants`:"
           " ppoe-build's tables carry them; a joint's displacement is then one sin/cos, 19"
@@ -697,8 +697,11 @@ def render(d):
           " product so that their sin/cos latencies overlap; a branch-free quadrant selection in"
           " the f32 sin/cos (slower: the quadrant branch predicts well); the serial product on"
           " rows packed as 4-lane vectors (slower: packing costs more than it saves); gathering"
-          " only the covariance entries the transport reads (no change); four f32 lanes (slower, on"
-          " the seed robot and on the synthetic chains, whenever tried).")
+          " only the covariance entries the transport reads (no change). Two f32 lanes, the former"
+          " choice, left the other half of each 4-lane SSE register unset: on AMD EPYC the"
+          " garbage there underflowed into subnormals (with flush-to-zero the two-lane f32 PPOE"
+          " dropped from 307 to 222 ns), so f32 now fills the register (`benches/lanes_ratio.rs`"
+          " compares the widths in one process: `cargo bench --bench lanes_ratio`).")
         nn64, nn32 = c("ppoe_seed/ours_joint_new/f64"), c("ppoe_seed/ours_joint_new/f32")
         if nn64:
             p("- Joints built with `Joint::new` (a `const fn`, which cannot compute the displacement"
@@ -745,11 +748,9 @@ def render(d):
             if fk32 and fk64:
                 line += (" The rigid part alone: f32 %s µs, f64 %s µs; the rest (the transports):"
                          " f32 %s µs, f64 %s µs." % (us(fk32), us(fk64), us(s32 - fk32), us(s64 - fk64)))
-            line += (" Both scalars run the same schedule (two transports in the lanes of one"
-                     " SSE register, the rigid part scalar), so f32 gains nothing from narrower"
-                     " values; and in the disassembly, gathering two f32 covariance entries into"
-                     " a register takes two loads and a shuffle where f64 loads the second"
-                     " straight into the upper half.")
+            line += (" Both scalars fill one SSE register with transports (f32: 4 lanes, f64: 2;"
+                     " the rigid part is scalar); gathering f32 covariance entries into"
+                     " a register takes more loads and shuffles than f64's.")
         p(line)
     p("")
     # ---- firmware targets: kept from BENCHMARKS.md as it was (it names its own run)

@@ -64,8 +64,11 @@ def count(n, lanes=2):
     p = PIECES
     per_joint = add(p["exp"], p["compose"], p["transport"])
     # After the loop: the W lanes of the 36 accumulated entries are summed (W - 1 adds
-    # each); padding lanes of a last incomplete group are counted as computed.
-    pad = (-n) % lanes
+    # each). A last incomplete group of `filled` joints runs packed, its empty lanes counted
+    # as computed, only when W > 2 and it fills more than half of them (src/transport.rs,
+    # `Sums::add`); otherwise its joints run one lane at a time and nothing is padded.
+    filled = n % lanes
+    pad = lanes - filled if filled and lanes > 2 and 2 * filled > lanes else 0
     tail = add(*([p["transport"]] * pad), {"mul": 0, "add": 36 * (lanes - 1)})
     total = add(*([per_joint] * n), tail)
     return per_joint, tail, total
