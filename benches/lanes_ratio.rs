@@ -11,90 +11,16 @@
 //! lanes 0 = the target's own choice, `ChainView::ppoe`). `LANES_RATIO_FTZ=1` sets
 //! flush-to-zero first (x86-64), which shows what subnormal values cost.
 
-use ppoe::chain::{ChainView, Convention, Joint, JointKind};
-use ppoe::{se3, Mat6, Real, Transform, Vec3, Vector};
-use serde_json::Value;
+use ppoe::chain::{ChainView, Convention};
+use ppoe::Real;
+use ppoe_test_support::fixtures::{seed_case, synthetic_case, Case};
 use std::hint::black_box;
 use std::time::Instant;
 
-/// Joints, home pose, joint values and joint covariances of one case.
-type Case<T> = (Vec<Joint<T>>, Transform<T>, Vec<T>, Vec<Mat6<T>>);
-
-fn num(v: &Value) -> f64 {
-    match v {
-        Value::String(s) if s == "inf" => f64::INFINITY,
-        Value::String(s) if s == "-inf" => f64::NEG_INFINITY,
-        _ => v.as_f64().expect("number"),
-    }
-}
-
-/// The seed robot (its golden file) at the example's initial state, converted as
-/// ppoe-build converts its tables (`Joint::from_f64`, `Transform::from_f64`).
-fn seed<T: Real>() -> Case<T> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/test_data/golden/ppoe/seed_linkmount_tcp.json"
-    );
-    let g: Value =
-        serde_json::from_str(&std::fs::read_to_string(path).expect("golden seed")).expect("json");
-    let joints: Vec<Joint<f64>> = g["screw_axes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .zip(g["limits"].as_array().unwrap())
-        .map(|(s, l)| {
-            let s: Vec<f64> = s.as_array().unwrap().iter().map(num).collect();
-            let l: Vec<f64> = l.as_array().unwrap().iter().map(num).collect();
-            let screw = std::array::from_fn(|i| s[i]);
-            Joint::new("j", JointKind::Revolute, screw, l[0], l[1])
-        })
-        .collect();
-    let h: Vec<Vec<f64>> = g["home"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|r| r.as_array().unwrap().iter().map(num).collect())
-        .collect();
-    let home = Transform::from_matrix4(&std::array::from_fn(|i| std::array::from_fn(|j| h[i][j])));
-    let mut covs = vec![Mat6::zeros(); 6];
-    covs[0].0[2][2] = T::lit(0.05);
-    for i in [1, 2, 4] {
-        covs[i].0[1][1] = T::lit(0.05);
-    }
-    (
-        joints.iter().map(Joint::from_f64).collect(),
-        Transform::from_f64(&home),
-        [-0.5, -0.5, -0.5, 0.0, -0.5, 0.0].map(T::lit).to_vec(),
-        covs,
-    )
-}
-
-/// A chain of n revolute joints with varied axes and a full-rank covariance each (the
-/// synthetic chains of benches/ops.rs).
-fn synthetic<T: Real>(n: usize) -> Case<T> {
-    let joints = (0..n)
-        .map(|i| {
-            let a = i as f64 * 0.7;
-            let s = Vec3::<f64>::new(a.sin() * 0.3, a.cos() * 0.4, 0.866);
-            let q = Vec3::new(0.1 * i as f64, 0.05, 0.2 * i as f64);
-            let screw = se3::screw_axis(&q, &s, 0.0).unwrap();
-            let j = Joint::new("j", JointKind::Revolute, screw.0, -3.0, 3.0);
-            Joint::from_f64(&j)
-        })
-        .collect();
-    let home = Transform::from_parts(
-        [[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]].map(|r| r.map(T::lit)),
-        [0.1, 0.0, 0.2 * n as f64].map(T::lit),
-    );
-    let thetas = (0..n).map(|i| T::lit(0.3 + 0.1 * i as f64)).collect();
-    let cov = Mat6::from_diagonal(&Vector([1e-4, 2e-4, 1e-4, 1e-6, 2e-6, 1e-6].map(T::lit)));
-    (joints, home, thetas, vec![cov; n])
-}
-
 fn case<T: Real>(name: &str) -> Case<T> {
     match name {
-        "seed" => seed(),
-        n => synthetic(n.trim_start_matches("chain").parse().expect("chainN")),
+        "seed" => seed_case(),
+        n => synthetic_case(n.trim_start_matches("chain").parse().expect("chainN")),
     }
 }
 

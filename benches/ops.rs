@@ -13,6 +13,7 @@ use ppoe::chain::{ChainView, Convention, Joint, JointKind, UncertainPose};
 use ppoe::surface::{self, Surface};
 use ppoe::uncertainty::{self, IterationOptions, Order};
 use ppoe::{se3, so3, Mat6, Matrix, Real, Transform, Vec3, Vector};
+use ppoe_test_support::fixtures;
 use serde_json::Value;
 use std::hint::black_box;
 
@@ -105,44 +106,18 @@ fn nalgebra_inputs<T: Real + nalgebra::RealField>(
     (na, na_covs)
 }
 
-/// The seed example's joint covariances and initial joint values.
+/// The seed example's joint covariances and initial joint values (the shared fixture).
 fn seed_inputs<T: Real>() -> ([T; 6], [Mat6<T>; 6]) {
-    let mut covs = [Mat6::zeros(); 6];
-    covs[0].0[2][2] = T::lit(0.05);
-    for i in [1, 2, 4] {
-        covs[i].0[1][1] = T::lit(0.05);
-    }
-    ([-0.5, -0.5, -0.5, 0.0, -0.5, 0.0].map(T::lit), covs)
+    let (thetas, covs) = fixtures::seed_state();
+    (
+        std::array::from_fn(|i| thetas[i]),
+        std::array::from_fn(|i| covs[i]),
+    )
 }
 
-/// A synthetic chain of n revolute joints with varied axes, and a full-rank covariance each.
-/// Joints, home pose, joint values and joint covariances of a benchmark chain.
-type Synthetic<T> = (Vec<Joint<T>>, Transform<T>, Vec<T>, Vec<Mat6<T>>);
-
-fn synthetic<T: Real>(n: usize) -> Synthetic<T> {
-    let joints = (0..n)
-        .map(|i| {
-            let a = i as f64 * 0.7;
-            let s = Vec3::<f64>::new(a.sin() * 0.3, a.cos() * 0.4, 0.866);
-            let q = Vec3::new(0.1 * i as f64, 0.05, 0.2 * i as f64);
-            let screw = se3::screw_axis(&q, &s, 0.0).unwrap();
-            Joint::new(
-                "j",
-                JointKind::Revolute,
-                screw.0.map(T::lit),
-                T::lit(-3.0),
-                T::lit(3.0),
-            )
-            .prepared() // as ppoe-build's tables and `Joint::from_f64` are
-        })
-        .collect();
-    let home = Transform::from_parts(
-        [[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]].map(|r| r.map(T::lit)),
-        [0.1, 0.0, 0.2 * n as f64].map(T::lit),
-    );
-    let thetas = (0..n).map(|i| T::lit(0.3 + 0.1 * i as f64)).collect();
-    let cov = Mat6::from_diagonal(&Vector([1e-4, 2e-4, 1e-4, 1e-6, 2e-6, 1e-6].map(T::lit)));
-    (joints, home, thetas, vec![cov; n])
+/// The synthetic chain of n joints (the shared fixture: varied axes, full-rank covariances).
+fn synthetic<T: Real>(n: usize) -> fixtures::Case<T> {
+    fixtures::synthetic_case(n)
 }
 
 fn num_traits_abs<T: Real>(x: T) -> T {

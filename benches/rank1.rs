@@ -7,51 +7,10 @@
 mod robots;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use ppoe::chain::{screw_noise, ChainView, Convention, Joint, JointKind};
+use ppoe::chain::{screw_noise, ChainView, Convention, Joint};
 use ppoe::{Mat6, Real, Transform};
-use serde_json::Value;
+use ppoe_test_support::fixtures::seed_chain;
 use std::hint::black_box;
-
-fn num(v: &Value) -> f64 {
-    match v {
-        Value::String(s) if s == "inf" => f64::INFINITY,
-        Value::String(s) if s == "-inf" => f64::NEG_INFINITY,
-        _ => v.as_f64().expect("number"),
-    }
-}
-
-/// The seed chain from the golden file, converted as `ppoe-build`'s tables are
-/// (`Joint::from_f64`, `Transform::from_f64`).
-fn seed_chain<T: Real>() -> (Vec<Joint<T>>, Transform<T>) {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/test_data/golden/ppoe/seed_linkmount_tcp.json"
-    );
-    let g: Value =
-        serde_json::from_str(&std::fs::read_to_string(path).expect("golden seed")).expect("json");
-    let arr = |v: &Value| -> Vec<f64> { v.as_array().unwrap().iter().map(num).collect() };
-    let joints: Vec<Joint<f64>> = g["screw_axes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .zip(g["limits"].as_array().unwrap())
-        .map(|(s, l)| {
-            let (s, l) = (arr(s), arr(l));
-            let s: [f64; 6] = std::array::from_fn(|i| s[i]);
-            Joint::new("j", JointKind::Revolute, s, l[0], l[1]).prepared()
-        })
-        .collect();
-    let h = g["home"].as_array().unwrap();
-    let m: [[f64; 4]; 4] = std::array::from_fn(|r| {
-        let row = arr(&h[r]);
-        std::array::from_fn(|c| row[c])
-    });
-    let home = Transform::from_matrix4(&m);
-    (
-        joints.iter().map(Joint::from_f64).collect(),
-        Transform::from_f64(&home),
-    )
-}
 
 fn bench_chain<T: Real>(c: &mut Criterion, label: &str, joints: &[Joint<T>], home: Transform<T>) {
     let chain = ChainView { joints, home };

@@ -25,69 +25,10 @@
 //! done
 //! ```
 
-use ppoe::chain::{ChainView, Convention, Joint, JointKind};
-use ppoe::{se3, Mat6, Matrix, Real, Transform, Vec3};
-use serde_json::Value;
+use ppoe::chain::{ChainView, Convention, Joint};
+use ppoe::{Mat6, Matrix, Real, Transform};
+use ppoe_test_support::fixtures::{seed_chain, seed_state as seed_inputs, synthetic_case};
 use std::hint::black_box;
-
-fn num(v: &Value) -> f64 {
-    match v {
-        Value::String(s) if s == "inf" => f64::INFINITY,
-        Value::String(s) if s == "-inf" => f64::NEG_INFINITY,
-        _ => v.as_f64().expect("number"),
-    }
-}
-
-/// The seed robot's chain from the oracle's golden file, converted as `ppoe-build` does.
-fn seed_chain<T: Real>() -> (Vec<Joint<T>>, Transform<T>) {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/test_data/golden/ppoe/seed_linkmount_tcp.json"
-    );
-    let g: Value =
-        serde_json::from_str(&std::fs::read_to_string(path).expect("golden seed file")).unwrap();
-    let joints: Vec<Joint<f64>> = g["screw_axes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .zip(g["limits"].as_array().unwrap())
-        .map(|(s, l)| {
-            let s: Vec<f64> = s.as_array().unwrap().iter().map(num).collect();
-            let l: Vec<f64> = l.as_array().unwrap().iter().map(num).collect();
-            Joint::new(
-                "j",
-                JointKind::Revolute,
-                std::array::from_fn(|i| s[i]),
-                l[0],
-                l[1],
-            )
-        })
-        .collect();
-    let h: Vec<Vec<f64>> = g["home"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|r| r.as_array().unwrap().iter().map(num).collect())
-        .collect();
-    let home = Transform::from_matrix4(&std::array::from_fn(|i| std::array::from_fn(|j| h[i][j])));
-    (
-        joints.iter().map(Joint::from_f64).collect(),
-        Transform::from_f64(&home),
-    )
-}
-
-/// The seed example's joint values and covariances (joints 4 and 6 have none).
-fn seed_inputs<T: Real>() -> (Vec<T>, Vec<Mat6<T>>) {
-    let mut covs = vec![Mat6::zeros(); 6];
-    covs[0].0[2][2] = T::lit(0.05);
-    for i in [1, 2, 4] {
-        covs[i].0[1][1] = T::lit(0.05);
-    }
-    (
-        [-0.5, -0.5, -0.5, 0.0, -0.5, 0.0].map(T::lit).to_vec(),
-        covs,
-    )
-}
 
 /// The seed example's variances per joint value, rad² (the same joints as [`seed_inputs`]).
 fn seed_variances<T: Real>() -> Vec<T> {
@@ -100,20 +41,8 @@ type Inputs<T> = (Vec<Joint<T>>, Transform<T>, Vec<T>, Vec<Mat6<T>>);
 /// A 7-joint arm with varied axes and a full (dense, positive definite) covariance per joint.
 fn arm7<T: Real>() -> Inputs<T> {
     let n = 7;
-    let joints = (0..n)
-        .map(|i| {
-            let a = i as f64 * 0.7;
-            let s = Vec3::<f64>::new(a.sin() * 0.3, a.cos() * 0.4, 0.866);
-            let q = Vec3::new(0.1 * i as f64, 0.05, 0.2 * i as f64);
-            let screw = se3::screw_axis(&q, &s, 0.0).unwrap();
-            Joint::from_f64(&Joint::new("j", JointKind::Revolute, screw.0, -3.0, 3.0))
-        })
-        .collect();
-    let home = Transform::from_parts(
-        [[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]].map(|r| r.map(T::lit)),
-        [0.1, 0.0, 0.2 * n as f64].map(T::lit),
-    );
-    let thetas = (0..n).map(|i| T::lit(0.3 + 0.1 * i as f64)).collect();
+    // The synthetic chain's joints, home and joint values; its covariances replaced by dense ones.
+    let (joints, home, thetas, _) = synthetic_case(n);
     let covs = (0..n)
         .map(|k| {
             // L·Lᵀ with L lower triangular, positive diagonal: dense and positive definite.

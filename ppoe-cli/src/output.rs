@@ -133,13 +133,7 @@ pub fn write_atomic(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> anyhow::Result<()> {
-    write_atomic_path(path, |temp| {
-        let sentence =
-            |e: io::Error| anyhow::anyhow!("cannot write {}: {}", path.display(), io_sentence(&e));
-        let file = std::fs::File::create(temp).map_err(sentence)?;
-        let mut w = io::BufWriter::new(file);
-        write(&mut w).and_then(|()| w.flush()).map_err(sentence)
-    })
+    write_atomic_with(path, |w| write(w).map_err(anyhow::Error::from))
 }
 
 /// Writes `path` atomically through a buffered writer given to `write`, for writers whose

@@ -19,6 +19,8 @@
 //! directory). Failures panic with the file and the reason: these are test helpers.
 #![deny(missing_docs)]
 
+pub mod fixtures;
+
 use ppoe::uncertainty::{self, Order};
 use ppoe::{se3, Mat6, Matrix, Transform, Vec6, Vector};
 use rand::Rng;
