@@ -8,12 +8,13 @@ use ppoe::{Mat3, Mat6, Transform, Vec3};
 use ppoe_fit::{fit, simulate, Fit, Model};
 
 /// A robot of `test_data/urdf`: (file, base, tip).
-pub const ROBOTS: [(&str, &str, &str); 5] = [
+pub const ROBOTS: [(&str, &str, &str); 6] = [
     ("seed.urdf", "linkmount", "tcp"),
     ("prismatic.urdf", "base_link", "tool0"),
     ("rpy_everywhere.urdf", "base", "tool"),
     ("continuous.urdf", "base", "ee"),
     ("tree.urdf", "base_footprint", "left_tip"),
+    ("arm7.urdf", "base", "tool"),
 ];
 
 /// The chain of a test robot as `ppoe eval` builds it.
