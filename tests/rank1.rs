@@ -208,6 +208,42 @@ const ARM: Chain<f64, 6> = Chain::new(
     Transform::from_parts([[0., -1., 0.], [1., 0., 0.], [0., 0., 1.]], [1.1, 0.2, 0.9]),
 );
 
+/// The worst f32 error of both paths against the f64 oracle over 20,000 random states of
+/// `ARM`, per convention: the figures the `random_f32` bounds and `src/rank1.rs` cite.
+/// `cargo test --release -p ppoe --test rank1 -- --ignored --nocapture`
+#[test]
+#[ignore = "a measurement (20,000 states), not a check"]
+fn worst_f32_error_over_random_states() {
+    let arm32 = Chain::new(
+        "base",
+        "tip",
+        ARM.joints.map(|j| Joint::from_f64(&j)),
+        Transform::<f32>::from_f64(&ARM.home),
+    );
+    let arm64 = widen(&arm32);
+    let mut state = 12345u64;
+    let mut uniform = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for c in CONVENTIONS {
+        let (mut fast_worst, mut dense_worst) = (0.0f64, 0.0f64);
+        for _ in 0..20_000 {
+            let th: [f32; 6] = std::array::from_fn(|_| (uniform() * 8.0 - 4.0) as f32);
+            let s2: [f32; 6] = std::array::from_fn(|_| (uniform() * 1e-2) as f32);
+            let (th64, s64) = (th.map(f64::from), s2.map(f64::from));
+            let truth = arm64.ppoe(&th64, &ppoe::rank1::dense_covariances(&arm64, &s64), c);
+            let dense = arm32.ppoe(&th, &ppoe::rank1::dense_covariances(&arm32, &s2), c);
+            let fast = arm32.ppoe_rank1(&th, &s2, c);
+            fast_worst = fast_worst.max(max_rel_to(&fast.cov, &truth.cov));
+            dense_worst = dense_worst.max(max_rel_to(&dense.cov, &truth.cov));
+        }
+        println!("{c:?}: rank-one worst {fast_worst:.2e}, dense worst {dense_worst:.2e}");
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
     #[test]
@@ -239,7 +275,8 @@ proptest! {
             let dense = arm32.ppoe(&th, &ppoe::rank1::dense_covariances(&arm32, &s2), c);
             let fast = arm32.ppoe_rank1(&th, &s2, c);
             // Left sums the transports in the base frame, where lever arms from the base
-            // to each joint cancel: over 20,000 random states of this arm the f32 rank-one
+            // to each joint cancel: over 20,000 random states of this arm
+            // (`worst_f32_error_over_random_states`) the f32 rank-one
             // path's worst error is 1.1e-6 there (the dense path's 1.7e-6), 8.3e-7 in the
             // tip frame (dense 7.5e-7). Bounds: 16ε (Left) and 8ε (the tip frame).
             let bound = if c == Convention::Left { 16.0 } else { 8.0 } * f64::from(f32::EPSILON);

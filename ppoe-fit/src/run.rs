@@ -432,12 +432,7 @@ fn warnings(
         ));
     }
     if let Some([fr, ft]) = fit.residual_floor {
-        let joints_only: Vec<Matrix6<f64>> = x
-            .iter()
-            .take(x.len() - 1)
-            .copied()
-            .chain([Matrix6::zeros()])
-            .collect();
+        let joints_only = without_floor(x);
         let k = design.eta.len() as f64;
         let (mut vr, mut vt) = (0.0, 0.0);
         for i in 0..design.eta.len() {
@@ -456,6 +451,15 @@ fn warnings(
     w
 }
 
+/// The coefficients with the residual floor's (the last) set to zero: the joints' own Σ.
+fn without_floor(x: &[Matrix6<f64>]) -> Vec<Matrix6<f64>> {
+    x.iter()
+        .take(x.len() - 1)
+        .copied()
+        .chain([Matrix6::zeros()])
+        .collect()
+}
+
 /// Each sample's squared Mahalanobis distance and its dimension: all six directions
 /// without a floor; with one only the eigen-directions of the joints' Σ (with
 /// R) whose variance is at least 10× the floor's there.
@@ -464,12 +468,7 @@ fn distances(design: &Design, x: &[Matrix6<f64>], d6: &[f64], floor: bool) -> Ve
         return d6.iter().map(|d| (*d, 6)).collect();
     }
     let floor = x[x.len() - 1];
-    let joints_only: Vec<Matrix6<f64>> = x
-        .iter()
-        .take(x.len() - 1)
-        .copied()
-        .chain([Matrix6::zeros()])
-        .collect();
+    let joints_only = without_floor(x);
     design
         .eta
         .iter()
