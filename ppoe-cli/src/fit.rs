@@ -103,6 +103,7 @@ pub fn to_json(robot: &RobotChain, f: &Fit, r: Option<[[f64; 6]; 6]>) -> Value {
         .collect();
     let id = &f.identifiability;
     let g = &f.goodness_of_fit;
+    let p = &f.prediction_error;
     json!({
         "model": f.model.name(),
         "chain": {"base": robot.base, "tip": robot.tip, "joints": robot.joint_names()},
@@ -121,6 +122,10 @@ pub fn to_json(robot: &RobotChain, f: &Fit, r: Option<[[f64; 6]; 6]>) -> Value {
         "goodness_of_fit": {
             "mean_mahalanobis": g.mean_mahalanobis, "beyond_99": g.beyond_99,
             "ks_statistic": g.ks_statistic, "p_value": g.p_value, "fits": g.fits,
+        },
+        "prediction_error": {
+            "median": p.median, "worst": p.worst, "configurations": p.configurations,
+            "samples_for_5_percent": ppoe_fit::samples_for(f.samples, p.median, 0.05),
         },
         "warnings": f.warnings,
     })
@@ -142,6 +147,15 @@ fn summary(f: &Fit, seconds: f64) {
         },
         f.iterations
     );
+    joint_lines(&mut e, f);
+    quality_lines(&mut e, f);
+    for w in &f.warnings {
+        let _ = writeln!(e, "warning: {w}");
+    }
+}
+
+/// Per joint: σ² ± standard error (joint model) or the diagonal ± standard errors.
+fn joint_lines(e: &mut impl Write, f: &Fit) {
     for j in &f.joints {
         match (j.sigma2, j.sigma2_se) {
             (Some(s), se) => {
@@ -164,6 +178,10 @@ fn summary(f: &Fit, seconds: f64) {
             }
         }
     }
+}
+
+/// The residual floor, identifiability, goodness of fit and prediction error.
+fn quality_lines(e: &mut impl Write, f: &Fit) {
     if let Some([r, t]) = f.residual_floor {
         let _ = writeln!(
             e,
@@ -190,9 +208,16 @@ fn summary(f: &Fit, seconds: f64) {
             "the model does NOT fit"
         }
     );
-    for w in &f.warnings {
-        let _ = writeln!(e, "warning: {w}");
-    }
+    let p = &f.prediction_error;
+    let _ = writeln!(
+        e,
+        "  predicted tool covariance: ±{:.1} % (median standard error over {} configurations, \
+         worst {:.1} %); about {} samples for ±5 %",
+        100.0 * p.median,
+        p.configurations,
+        100.0 * p.worst,
+        ppoe_fit::samples_for(f.samples, p.median, 0.05)
+    );
 }
 
 /// The noise model of `--noise FILE`, checked against the chain.

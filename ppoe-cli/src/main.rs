@@ -94,6 +94,7 @@ enum Command {
     /// first)}. Output (stdout, or --out written atomically): {"model","joints":[{"name",
     /// "cov" (6×6, what `eval` takes as covs[i]),"cov_se","sigma2","sigma2_se"}],
     /// "log_likelihood","samples","converged","identifiability","goodness_of_fit",
+    /// "prediction_error" (relative standard error of the predicted tool covariance),
     /// "warnings",...}; a summary (estimate ± standard error per joint) on stderr.
     #[command(after_help = EXIT_CODES_SHORT)]
     Fit(FitArgs),

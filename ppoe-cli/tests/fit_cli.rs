@@ -54,6 +54,18 @@ fn input(samples: &[ppoe_fit::Sample]) -> Value {
     json!({ "samples": s })
 }
 
+/// The joint model of 1500 samples predicts the tool covariance to a few percent (the
+/// fit's test suite checks the figure against independent fits): reported in the JSON
+/// with the samples needed for 5 % (fewer than it has), and on stderr.
+fn check_prediction_error(v: &Value, stderr: &str) {
+    let p = &v["prediction_error"];
+    let (median, worst) = (p["median"].as_f64().unwrap(), p["worst"].as_f64().unwrap());
+    assert!(0.0 < median && median <= worst && worst < 0.1, "{p}");
+    assert_eq!(p["configurations"], 188, "every 8th of 1500 samples");
+    assert!(p["samples_for_5_percent"].as_u64().unwrap() <= 1500, "{p}");
+    assert!(stderr.contains("predicted tool covariance: ±"), "{stderr}");
+}
+
 #[test]
 fn fit_table_eval() {
     let dir = scratch("ok");
@@ -87,6 +99,7 @@ fn fit_table_eval() {
     assert_eq!(v["model"], "joint");
     assert_eq!(v["samples"], 1500);
     assert_eq!(v["converged"], true);
+    check_prediction_error(&v, &stderr);
     for (j, s) in v["joints"].as_array().unwrap().iter().zip(s2) {
         let (est, se) = (
             j["sigma2"].as_f64().unwrap(),

@@ -60,14 +60,16 @@ mod fisher;
 mod optimize;
 mod parallel;
 mod param;
+mod prediction;
 mod report;
 mod samples;
 pub mod simulate;
 
 pub use error::FitError;
 pub use param::Model;
+pub use prediction::PredictionError;
 pub use report::{chi2_cdf, GoodnessOfFit};
 pub use samples::{Sample, RIGID_TOL};
 
 mod run;
-pub use run::{fit, Fit, Identifiability, JointFit};
+pub use run::{fit, samples_for, Fit, Identifiability, JointFit};

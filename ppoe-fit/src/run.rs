@@ -5,6 +5,7 @@ use crate::design::Design;
 use crate::error::FitError;
 use crate::optimize::{maximize, Crawl};
 use crate::param::{unit_matrix, Model, Param};
+use crate::prediction::{prediction_error, PredictionError};
 use crate::report::{goodness_of_fit, information, GoodnessOfFit, Information};
 use crate::samples::{prepare, to_na, transports, Prepared, Sample};
 use nalgebra::{DVector, Matrix6, Vector6};
@@ -109,6 +110,9 @@ pub struct Fit {
     pub identifiability: Identifiability,
     /// Residuals against the fitted model.
     pub goodness_of_fit: GoodnessOfFit,
+    /// How precisely the fitted model predicts the tool covariance (standard error from
+    /// the Fisher information).
+    pub prediction_error: PredictionError,
     /// Things the user should know (not converged, few samples, clipped joint values,
     /// a poor fit, a large residual floor).
     pub warnings: Vec<String>,
@@ -168,6 +172,8 @@ pub fn fit(
         .ok_or_else(|| FitError::Numerical("Σ singular at the optimum".into()))?;
     let jn = param.natural_jacobian(design.units.len());
     let info = information(&(jn.transpose() * &m.fisher * &jn));
+    let unit_cov = &jn * &info.cov * jn.transpose();
+    let prediction = prediction_error(&design, &x, n, &unit_cov);
     let gof = goodness_of_fit(&distances(&design, &x, &m.mahalanobis, with_floor));
     let joints_out = joint_fits(joints, &data, &param, &x, &info);
     let floor = with_floor.then(|| [x[n][(0, 0)], x[n][(3, 3)]]);
@@ -181,6 +187,7 @@ pub fn fit(
         residual_floor: floor,
         identifiability: identifiability(&info, determinable, &names),
         goodness_of_fit: gof,
+        prediction_error: prediction,
         warnings: Vec::new(),
     };
     fit.warnings = warnings(&fit, &design, &x, data.clipped, needed);
@@ -416,6 +423,7 @@ fn warnings(
             10 * needed
         ));
     }
+    w.extend(prediction_warning(fit));
     if clipped > 0 {
         w.push(format!(
             "{clipped} samples had a joint value outside its limits (clipped, as the PPOE clips)"
@@ -449,6 +457,43 @@ fn warnings(
         }
     }
     w
+}
+
+/// A median prediction error above this is worth a warning, and how many samples would
+/// bring it to `PREDICTION_TARGET`.
+const PREDICTION_WARN: f64 = 0.1;
+const PREDICTION_TARGET: f64 = 0.05;
+
+/// The warning for a fit whose predictions are uncertain by more than `PREDICTION_WARN`.
+fn prediction_warning(fit: &Fit) -> Option<String> {
+    let p = &fit.prediction_error;
+    (p.median > PREDICTION_WARN).then(|| {
+        format!(
+            "the fitted model predicts tool covariances to ±{:.1} % (median standard error over \
+             {} configurations, worst {:.1} %): about {} samples would bring the median to {} %",
+            100.0 * p.median,
+            p.configurations,
+            100.0 * p.worst,
+            samples_for(fit.samples, p.median, PREDICTION_TARGET),
+            100.0 * PREDICTION_TARGET
+        )
+    })
+}
+
+/// The samples that bring a sampling error `error` of `samples` samples down to `target`
+/// (it shrinks as 1/√samples), rounded up to a hundred; `usize::MAX` if that is not finite.
+///
+/// ```
+/// // 2000 samples left an 8 % error: 5 % needs (8/5)² = 2.56 times as many.
+/// assert_eq!(ppoe_fit::samples_for(2000, 0.08, 0.05), 5200);
+/// ```
+pub fn samples_for(samples: usize, error: f64, target: f64) -> usize {
+    let n = samples as f64 * (error / target).powi(2);
+    if n.is_finite() {
+        ((n / 100.0).ceil() * 100.0) as usize
+    } else {
+        usize::MAX
+    }
 }
 
 /// The coefficients with the residual floor's (the last) set to zero: the joints' own Σ.

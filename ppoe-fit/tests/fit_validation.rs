@@ -76,3 +76,72 @@ fn full_model_seven_joints_with_tracker() {
     let id = &o.fit.identifiability;
     assert!(id.determined < id.parameters && id.determined == id.determinable);
 }
+
+/// The reported prediction error against the truth: over `seeds` independent datasets,
+/// the root mean square (over the datasets) of the fitted model's relative error at each
+/// of 200 held-out configurations, its median over the configurations, against the mean
+/// of the fits' reported median. Returns (reported, measured).
+fn reported_and_measured(index: usize, model: Model, with_tracker: bool, seeds: u64) -> (f64, f64) {
+    let (file, base, tip) = ROBOTS[index];
+    let (joints, home) = robot(file, base, tip);
+    let truth = match model {
+        Model::Joint => joint_covs(&joints, &joint_truth(&joints, 1.0)),
+        Model::Full => full_truth(&joints, 1.0),
+    };
+    let r = tracker();
+    let mut squares = vec![0.0; 200];
+    let mut reported = 0.0;
+    for seed in 0..seeds {
+        let samples = ppoe_fit::simulate::samples(
+            &joints,
+            &home,
+            &truth,
+            with_tracker.then_some(&r),
+            2000,
+            40 + seed,
+        );
+        let f = ppoe_fit::fit(
+            &joints,
+            &home,
+            &samples,
+            with_tracker.then_some(&r.0),
+            model,
+            &mut |_, _| {},
+        )
+        .unwrap();
+        reported += f.prediction_error.median / seeds as f64;
+        let e = heldout_errors_in_order(&joints, &home, &truth, &fitted_covs(&f), 200);
+        squares
+            .iter_mut()
+            .zip(&e)
+            .for_each(|(s, e)| *s += e * e / seeds as f64);
+    }
+    let mut rms: Vec<f64> = squares.iter().map(|s| s.sqrt()).collect();
+    rms.sort_by(f64::total_cmp);
+    (reported, rms[100])
+}
+
+/// The reported prediction error is the error the fits actually make (it is computed
+/// from the Fisher information alone, without the truth): within 25 % for the full model
+/// (6 datasets of the seed robot) and the joint model (12 datasets of the 5-joint robot,
+/// and 12 of the prismatic one with tracker noise).
+#[test]
+fn reported_prediction_error_is_the_measured_one() {
+    for (robot, model, tracker, seeds) in [
+        (0, Model::Full, false, 6),
+        (3, Model::Joint, false, 12),
+        (1, Model::Joint, true, 12),
+    ] {
+        let (reported, measured) = reported_and_measured(robot, model, tracker, seeds);
+        eprintln!(
+            "{} {}: reported {reported:.4}, measured {measured:.4}",
+            ROBOTS[robot].0,
+            model.name()
+        );
+        assert!(
+            (reported / measured - 1.0).abs() < 0.25,
+            "{}: reported {reported}, measured {measured}",
+            ROBOTS[robot].0
+        );
+    }
+}

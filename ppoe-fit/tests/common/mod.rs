@@ -104,20 +104,31 @@ pub fn heldout_errors(
     fitted: &[Mat6<f64>],
     count: usize,
 ) -> Vec<f64> {
+    let mut e = heldout_errors_in_order(joints, home, truth, fitted, count);
+    e.sort_by(f64::total_cmp);
+    e
+}
+
+/// [`heldout_errors`] in the order of the configurations (the same for every call).
+pub fn heldout_errors_in_order(
+    joints: &[Joint<f64>],
+    home: &Transform<f64>,
+    truth: &[Mat6<f64>],
+    fitted: &[Mat6<f64>],
+    count: usize,
+) -> Vec<f64> {
     let chain = ChainView {
         joints,
         home: *home,
     };
-    let mut e: Vec<f64> = simulate::configurations(joints, count, 0xbeef)
+    simulate::configurations(joints, count, 0xbeef)
         .iter()
         .map(|th| {
             let t = chain.ppoe(th, truth, Convention::Right).unwrap().cov;
             let f = chain.ppoe(th, fitted, Convention::Right).unwrap().cov;
             frob(&(f - t)) / frob(&t)
         })
-        .collect();
-    e.sort_by(f64::total_cmp);
-    e
+        .collect()
 }
 
 /// The fitted covariances as core matrices.
