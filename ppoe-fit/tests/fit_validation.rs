@@ -82,38 +82,14 @@ fn full_model_seven_joints_with_tracker() {
 /// of 200 held-out configurations, its median over the configurations, against the mean
 /// of the fits' reported median. Returns (reported, measured).
 fn reported_and_measured(index: usize, model: Model, with_tracker: bool, seeds: u64) -> (f64, f64) {
-    let (file, base, tip) = ROBOTS[index];
-    let (joints, home) = robot(file, base, tip);
-    let truth = match model {
-        Model::Joint => joint_covs(&joints, &joint_truth(&joints, 1.0)),
-        Model::Full => full_truth(&joints, 1.0),
-    };
-    let r = tracker();
     let mut squares = vec![0.0; 200];
     let mut reported = 0.0;
     for seed in 0..seeds {
-        let samples = ppoe_fit::simulate::samples(
-            &joints,
-            &home,
-            &truth,
-            with_tracker.then_some(&r),
-            2000,
-            40 + seed,
-        );
-        let f = ppoe_fit::fit(
-            &joints,
-            &home,
-            &samples,
-            with_tracker.then_some(&r.0),
-            model,
-            &mut |_, _| {},
-        )
-        .unwrap();
-        reported += f.prediction_error.median / seeds as f64;
-        let e = heldout_errors_in_order(&joints, &home, &truth, &fitted_covs(&f), 200);
+        let o = scenario(index, model, 1.0, with_tracker, 2000, 40 + seed);
+        reported += o.fit.prediction_error.median / seeds as f64;
         squares
             .iter_mut()
-            .zip(&e)
+            .zip(&o.errors)
             .for_each(|(s, e)| *s += e * e / seeds as f64);
     }
     let mut rms: Vec<f64> = squares.iter().map(|s| s.sqrt()).collect();

@@ -96,21 +96,9 @@ fn frob(m: &Mat6<f64>) -> f64 {
 }
 
 /// Relative Frobenius errors of the predicted tool covariance (Right convention, the
-/// core's PPOE) at `count` held-out configurations: sorted.
+/// core's PPOE) at `count` held-out configurations (the same for every call), in their
+/// order.
 pub fn heldout_errors(
-    joints: &[Joint<f64>],
-    home: &Transform<f64>,
-    truth: &[Mat6<f64>],
-    fitted: &[Mat6<f64>],
-    count: usize,
-) -> Vec<f64> {
-    let mut e = heldout_errors_in_order(joints, home, truth, fitted, count);
-    e.sort_by(f64::total_cmp);
-    e
-}
-
-/// [`heldout_errors`] in the order of the configurations (the same for every call).
-pub fn heldout_errors_in_order(
     joints: &[Joint<f64>],
     home: &Transform<f64>,
     truth: &[Mat6<f64>],
@@ -141,6 +129,8 @@ pub struct Outcome {
     pub fit: Fit,
     pub median: f64,
     pub worst: f64,
+    /// The errors at the 200 held-out configurations, in their order.
+    pub errors: Vec<f64>,
     /// Joint model: the largest |σ̂² − σ²| / σ² and the largest |σ̂² − σ²| / se.
     pub var_rel: f64,
     pub var_z: f64,
@@ -176,7 +166,9 @@ pub fn scenario(
         &mut |_, _| {},
     )
     .unwrap_or_else(|e| panic!("{file}: {e}"));
-    let e = heldout_errors(&joints, &home, &truth, &fitted_covs(&f), 200);
+    let errors = heldout_errors(&joints, &home, &truth, &fitted_covs(&f), 200);
+    let mut e = errors.clone();
+    e.sort_by(f64::total_cmp);
     let (mut var_rel, mut var_z) = (0.0f64, 0.0f64);
     if model == Model::Joint {
         for (j, s) in f.joints.iter().zip(&s2) {
@@ -188,6 +180,7 @@ pub fn scenario(
     Outcome {
         median: e[e.len() / 2],
         worst: e[e.len() - 1],
+        errors,
         fit: f,
         var_rel,
         var_z,
