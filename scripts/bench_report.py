@@ -699,9 +699,11 @@ def render(d):
           " rows packed as 4-lane vectors (slower: packing costs more than it saves); gathering"
           " only the covariance entries the transport reads (no change). Two f32 lanes, the former"
           " choice, left the other half of each 4-lane SSE register unset: on AMD EPYC the"
-          " garbage there underflowed into subnormals (with flush-to-zero the two-lane f32 PPOE"
-          " dropped from 307 to 222 ns), so f32 now fills the register (`benches/lanes_ratio.rs`"
-          " compares the widths in one process: `cargo bench --bench lanes_ratio`).")
+          " garbage there underflowed into subnormals, so f32 now fills the register."
+          " `cargo bench --bench lanes_ratio` times every lane width in one process, and"
+          " `LANES_RATIO_FTZ=1` (flush-to-zero) shows what subnormals cost: when the two-lane"
+          " schedule was replaced, on the AMD EPYC of this report, with flush-to-zero its"
+          " f32 PPOE took 222 ns instead of 307 ns.")
         nn64, nn32 = c("ppoe_seed/ours_joint_new/f64"), c("ppoe_seed/ours_joint_new/f32")
         if nn64:
             p("- Joints built with `Joint::new` (a `const fn`, which cannot compute the displacement"
