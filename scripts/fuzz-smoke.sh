@@ -7,6 +7,10 @@
 #   FUZZ_TARGETS="urdf eigen" scripts/fuzz-smoke.sh
 #   FUZZ_SEED=1 FUZZ_RUNS=100000 scripts/fuzz-smoke.sh   # reproducible: fixed seed and count
 #                                                        # (FUZZ_SECONDS stays an upper bound)
+#   FUZZ_CORPUS=/var/tmp/ppoe-corpus scripts/fuzz-smoke.sh  # fuzz from (and grow) a kept
+#                                                        # corpus <dir>/<target>, seeded from the
+#                                                        # committed one when it does not exist:
+#                                                        # a long campaign continued in later runs
 #
 # Crash inputs are kept in fuzz/artifacts/<target>/. Prints the executions per target.
 set -euo pipefail
@@ -17,6 +21,7 @@ FUZZ_MAX_LEN="${FUZZ_MAX_LEN:-65536}"
 FUZZ_SUMMARY="${FUZZ_SUMMARY:-}" # if set, "target executions rc seconds" lines are appended to it
 FUZZ_SEED="${FUZZ_SEED:-}"       # libFuzzer -seed (default: random)
 FUZZ_RUNS="${FUZZ_RUNS:-}"       # libFuzzer -runs (default: unbounded, time only)
+FUZZ_CORPUS="${FUZZ_CORPUS:-}"   # an absolute corpus directory to keep (default: a temporary copy)
 extra=()
 [ -n "$FUZZ_SEED" ] && extra+=("-seed=$FUZZ_SEED")
 [ -n "$FUZZ_RUNS" ] && extra+=("-runs=$FUZZ_RUNS")
@@ -42,12 +47,19 @@ trap 'rm -rf "$work"' EXIT
 status=0
 printf '%-10s %14s %8s %s\n' target executions seconds result
 for target in $FUZZ_TARGETS; do
-    mkdir -p "$work/$target" "artifacts/$target"
-    cp -R "corpus/$target/." "$work/$target/"
+    mkdir -p "artifacts/$target"
+    corpus="$work/$target"
+    if [ -n "$FUZZ_CORPUS" ]; then
+        corpus="$FUZZ_CORPUS/$target"
+    fi
+    if [ ! -d "$corpus" ]; then
+        mkdir -p "$corpus"
+        cp -R "corpus/$target/." "$corpus/"
+    fi
     log="$work/$target.log"
     t0=$(date +%s)
     set +e
-    cargo +nightly fuzz run "$target" "$work/$target" -- \
+    cargo +nightly fuzz run "$target" "$corpus" -- \
         -max_total_time="$FUZZ_SECONDS" -max_len="$FUZZ_MAX_LEN" -timeout=30 \
         -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="artifacts/$target/" \
         ${extra[@]+"${extra[@]}"} >"$log" 2>&1
