@@ -50,6 +50,18 @@ PKG_ARGS=()
 for c in "${CRATES[@]}"; do PKG_ARGS+=(-p "${c%%$'\t'*}"); done
 log "publishable: ${PKG_ARGS[*]}"
 
+# The dry run builds each package against the others' packages from a temporary
+# registry. Cargo treats registry packages as immutable: it reuses a package it unpacked
+# under $CARGO_HOME/registry/src/ before, and the build of it in the target directory,
+# when the version is the same, so a second run would build stale sources. Remove both.
+CARGO_HOME_DIR="${CARGO_HOME:-$HOME/.cargo}"
+for c in "${CRATES[@]}"; do
+  name=${c%%$'\t'*}; version=${c#*$'\t'}
+  rm -rf "$CARGO_HOME_DIR"/registry/src/*/"$name-$version" \
+    "$CARGO_HOME_DIR"/registry/cache/*/"$name-$version.crate" \
+    "$CARGO_TARGET_DIR"/debug/.fingerprint/"$name"-*
+done
+
 # 1. Package and verify together. --allow-dirty: the check is about the package's contents,
 #    which cargo takes from the work tree either way.
 cargo publish --dry-run --allow-dirty "${PKG_ARGS[@]}"
