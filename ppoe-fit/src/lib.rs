@@ -31,6 +31,8 @@
 //! The second-order model is exact only to second order in the noise: ACCURACY.md
 //! ("Noise model fit") gives the error of predicted tool covariances on held-out
 //! configurations against the truth and the noise levels at which the fit is trustworthy.
+//! Each fit reports its own sampling error, [`Fit::prediction_error`] (the standard error
+//! of the predicted tool covariance), which ACCURACY.md lists beside the measured error.
 //!
 //! ```
 //! use ppoe::chain::{screw_noise, Joint, JointKind};
