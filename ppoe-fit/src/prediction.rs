@@ -19,11 +19,11 @@ const CONFIGURATIONS: usize = 200;
 /// any prediction). The figure is `√E‖ΔΣ‖²_F / ‖Σ‖_F`.
 ///
 /// # Accuracy
-/// First order in the estimation error and sampling error only: it does not include the
-/// second-order model's bias (ACCURACY.md, "When to trust the fit"). `ppoe-fit`'s
-/// `fit_validation` tests compare it with the spread of fits over independent datasets.
-/// Sampling error shrinks as 1/√samples: about `samples·(median/target)²` samples
-/// bring the median to `target`.
+/// First order in the estimation error, and sampling error only: it does not include the
+/// second-order model's bias, which grows with the noise (see the crate's Accuracy
+/// section). The `fit_validation` tests compare it with the spread of fits over
+/// independent datasets (within 25 %). Sampling error shrinks as 1/√samples: about
+/// `samples·(median/target)²` samples bring the median to `target` ([`crate::samples_for`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PredictionError {
     /// The median over the configurations.
