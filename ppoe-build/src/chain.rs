@@ -1,7 +1,7 @@
 //! Chain extraction: from a base link to a tip link through the URDF tree, the screw axes of
 //! the moving joints in the base frame at the home pose, the home pose M of the tip, and the
-//! limits — computed as pytransform3d's probabilistic-kinematics example does
-//! (MATH.md §4, §5.1).
+//! limits — computed as pytransform3d's probabilistic-kinematics example does (see the
+//! crate docs, "What is computed").
 
 use crate::error::{Error, ErrorKind, Result};
 use crate::math::{self, Mat4, IDENTITY};

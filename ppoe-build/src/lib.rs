@@ -91,8 +91,8 @@
 //!   robots do not have. f32 tables hold the same conversion to f32: each value rounded with
 //!   `as f32`, then elements below ε₃₂²·max zeroed. URDF rpy angles such as 1.5708 leave
 //!   entries like −1.9·10⁻²³; kept in f32, their products are subnormal, and x86 cores compute
-//!   those on a slow path (`fk_seed/rounded_only` in BENCHMARKS.md times the chain without
-//!   this step).
+//!   those on a slow path (the project's `fk_seed/rounded_only` benchmark times the chain
+//!   without this step).
 //!   Unbounded limits are `f64::INFINITY` / `f64::NEG_INFINITY`.
 //! * Joints that rotate carry their displacement constants
 //!   ([`ppoe::chain::JointConstants::of`] of the converted screw, in the table's scalar, as
@@ -108,7 +108,7 @@
 //!   ([`literal::comment_text`]), so every table compiles.
 //! * The item compiles in a `#![no_std]` crate that depends on `ppoe`.
 //!
-//! ## What is computed (pytransform3d's conventions, MATH.md §4 and §5.1)
+//! ## What is computed (pytransform3d's conventions)
 //!
 //! * Each joint's `<origin xyz rpy>` gives `child2parent = [[Rz(yaw)·Ry(pitch)·Rx(roll), xyz],
 //!   [0, 1]]`, the product evaluated as `(Rz·Ry)·Rx`.
@@ -142,7 +142,7 @@
 //! rejects the seed robot's URDF (its `<limit>` elements carry only `lower` and/or `upper`,
 //! and urdf-rs requires `effort` and `velocity`), and where it accepts a `<limit>` it turns
 //! a missing `lower`/`upper` into 0.0, whereas pytransform3d (and the URDF's intent) means
-//! unbounded (MATH.md §4). The kinematic subset of URDF is small, so this crate reads it
+//! unbounded. The kinematic subset of URDF is small, so this crate reads it
 //! itself with [roxmltree](https://docs.rs/roxmltree), a small, dependency-free,
 //! well-tested XML parser that also keeps the text position of every node and attribute:
 //! each error names the element, the attribute and the problem at `line:column`.

@@ -1,6 +1,7 @@
 //! The seed example's robot, from a table generated at **build time** (`build.rs` runs
 //! `ppoe-build` on `test_data/urdf/seed.urdf`, base `linkmount`, tip `tcp`): no URDF is
-//! parsed at run time. Also the seed's joint values and covariances (MATH.md §5.3).
+//! parsed at run time. Also the seed's joint values and covariances (those of
+//! pytransform3d's probabilistic forward kinematics example).
 
 use crate::visuals::Visuals;
 use ppoe::Mat6;
@@ -29,7 +30,7 @@ pub fn visuals() -> anyhow::Result<Visuals> {
 pub const THETAS: [f64; 6] = [1.0, 1.0, 1.0, 0.0, 1.0, 0.0];
 
 /// The seed's joint covariances: 0.05 rad² about the base z axis for joint1, about the
-/// base y axis for joints 2, 3 and 5, zero for joints 4 and 6 (MATH.md §5.3).
+/// base y axis for joints 2, 3 and 5, zero for joints 4 and 6 (as pytransform3d's example).
 pub fn covs() -> [Mat6<f64>; 6] {
     let mut covs = [Mat6::zeros(); 6];
     covs[0].0[2][2] = 0.05;
