@@ -501,6 +501,16 @@ fn report(
     p3: &[F32Row],
 ) -> String {
     let mut d = Doc::default();
+    write_intro(&mut d, n, sigma2);
+    write_part1(&mut d, sigma2, cases, p1);
+    write_part1_reading(&mut d, sigma2, cases, p1);
+    write_part2(&mut d, p2);
+    write_part3(&mut d, p3);
+    d.0
+}
+
+/// The title, how to regenerate the file and the error measures.
+fn write_intro(d: &mut Doc, n: usize, sigma2: f64) {
     let cmd = if n == 100_000 && sigma2 == DEFAULT_SIGMA2 {
         "scripts/accuracy.sh".to_string()
     } else {
@@ -539,8 +549,10 @@ fn report(
         "* **f32 vs f64**: `max|a − b| / max(1, max|b|)` over the 16 pose or 36 covariance \
          entries, a = f32 result (converted exactly to f64), b = f64 result.",
     );
+}
 
-    // Part 1.
+/// Part 1: the PPOE's covariance against Monte Carlo on every robot and noise scale.
+fn write_part1(d: &mut Doc, sigma2: f64, cases: &[Case], p1: &[Vec<Row>]) {
     d.para("## 1. PPOE covariance against Monte Carlo, as the joint noise grows");
     d.para(
         "Model (the one the PPOE linearises): `T = D₁·Exp(ξ₁)·D₂·Exp(ξ₂)·…·Dₙ·Exp(ξₙ)·M`, `Dᵢ = Exp(Sᵢθᵢ)`, \
@@ -583,7 +595,10 @@ fn report(
         ));
     }
     d.line("");
-    // Key numbers, generated.
+}
+
+/// Part 1's reading: its key numbers, generated from the rows.
+fn write_part1_reading(d: &mut Doc, sigma2: f64, cases: &[Case], p1: &[Vec<Row>]) {
     let find = |name: &str, scale: &str| -> Option<&Row> {
         cases
             .iter()
@@ -621,8 +636,10 @@ fn report(
             sig3(max16(|e| e.e2))
         ));
     }
+}
 
-    // Part 2.
+/// Part 2: Barfoot & Furgale's two-pose compounding sweep.
+fn write_part2(d: &mut Doc, p2: &[BfRow]) {
     d.para("## 2. Barfoot & Furgale two-pose compounding sweep");
     d.para(
         "Barfoot & Furgale (IEEE T-RO 2014, §IV.C): ξ₁ = (π/6, 0, 0 | 0, 2, 0), \
@@ -645,8 +662,10 @@ fn report(
              order of magnitude lower.",
         ));
     }
+}
 
-    // Part 3.
+/// Part 3: f32 against f64 over the golden set.
+fn write_part3(d: &mut Doc, p3: &[F32Row]) {
     d.para("## 3. f32 against f64 over the golden set");
     d.para(
         "For every case of every golden PPOE file (`test_data/golden/ppoe/*.json`): the chain \
@@ -701,7 +720,6 @@ fn report(
         sci(wc),
         sci(w4)
     ));
-    d.0
 }
 
 /// Joint-value variance of the non-seed robots at scale ×1: the seed's per-joint 0.05 rad².
