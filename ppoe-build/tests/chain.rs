@@ -68,38 +68,15 @@ fn mul(a: &M4, b: &M4) -> M4 {
 
 const SEED: &str = include_str!("../../test_data/urdf/seed.urdf");
 
-#[test]
-fn seed_screw_axes_and_home_pose() {
-    let c = chain(SEED, "linkmount", "tcp");
-    assert_eq!(c.robot, "seed_arm");
-    assert_eq!(
-        c.joint_names(),
-        ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
-    );
-    assert!(c.joints.iter().all(|j| j.kind == JointKind::Revolute));
+/// The seed's roll angle: 1.570796, deliberately not π/2.
+#[allow(clippy::approx_constant)]
+const SEED_ROLL: f64 = 1.570796;
 
-    // Joint 1: axis z through the origin, exactly.
-    assert_eq!(c.joints[0].screw, [0.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
-
-    // Joints 2 and 3: axis −z of a frame rolled by a = 1.570796 (not π/2): direction
-    // s = (0, sin a, −cos a). Joint 2 passes through q = (0, 0, 0.158): v = q × s =
-    // (−0.158 sin a, 0, 0); joint 3 through q + 0.28·(0, cos a, sin a):
-    // v_x = −0.28 (cos²a + sin²a) − 0.158 sin a.
-    #[allow(clippy::approx_constant)] // the seed's 1.570796, deliberately not π/2
-    let a = 1.570796_f64;
-    let expect2 = [0.0, a.sin(), -a.cos(), -0.158 * a.sin(), 0.0, 0.0];
-    let expect3 = [0.0, a.sin(), -a.cos(), -0.28 - 0.158 * a.sin(), 0.0, 0.0];
-    for (i, expect) in [(1, expect2), (2, expect3)] {
-        let s = c.joints[i].screw;
-        for k in 0..6 {
-            assert!(close(s[k], expect[k], 1e-15), "joint{} [{k}]: {s:?}", i + 1);
-        }
-    }
-    // The small non-zero entries MATH.md §5.3 mentions.
-    assert_eq!(c.joints[1].screw[2], -3.2679489653813835e-7);
-    assert!(close(c.joints[3].screw[3], 9.15e-8, 1e-10));
-
-    // Independent product of the origins, tip to base.
+/// The pose of each link of the seed chain in the base frame (`link2base[0]` is joint1's
+/// child, the last one the tip): the product of the URDF origins, tip to base, computed
+/// independently of ppoe-build.
+fn seed_link2base() -> Vec<[[f64; 4]; 4]> {
+    let a = SEED_ROLL;
     let origins = [
         origin([0.0, 0.0, 0.0], [0.0, 0.0, 0.0]),
         origin([0.0, 0.0, 0.158], [a, 0.0, 0.0]),
@@ -116,6 +93,45 @@ fn seed_screw_axes_and_home_pose() {
         t = mul(&t, o);
         link2base.push(t);
     }
+    link2base
+}
+
+#[test]
+fn seed_screw_axes_in_closed_form() {
+    let c = chain(SEED, "linkmount", "tcp");
+    assert_eq!(c.robot, "seed_arm");
+    assert_eq!(
+        c.joint_names(),
+        ["joint1", "joint2", "joint3", "joint4", "joint5", "joint6"]
+    );
+    assert!(c.joints.iter().all(|j| j.kind == JointKind::Revolute));
+
+    // Joint 1: axis z through the origin, exactly.
+    assert_eq!(c.joints[0].screw, [0.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
+
+    // Joints 2 and 3: axis −z of a frame rolled by a = 1.570796 (not π/2): direction
+    // s = (0, sin a, −cos a). Joint 2 passes through q = (0, 0, 0.158): v = q × s =
+    // (−0.158 sin a, 0, 0); joint 3 through q + 0.28·(0, cos a, sin a):
+    // v_x = −0.28 (cos²a + sin²a) − 0.158 sin a.
+    let a = SEED_ROLL;
+    let expect2 = [0.0, a.sin(), -a.cos(), -0.158 * a.sin(), 0.0, 0.0];
+    let expect3 = [0.0, a.sin(), -a.cos(), -0.28 - 0.158 * a.sin(), 0.0, 0.0];
+    for (i, expect) in [(1, expect2), (2, expect3)] {
+        let s = c.joints[i].screw;
+        for k in 0..6 {
+            assert!(close(s[k], expect[k], 1e-15), "joint{} [{k}]: {s:?}", i + 1);
+        }
+    }
+    // The small non-zero entries the roll of 1.570796 instead of π/2 leaves.
+    assert_eq!(c.joints[1].screw[2], -3.2679489653813835e-7);
+    assert!(close(c.joints[3].screw[3], 9.15e-8, 1e-10));
+}
+
+#[test]
+fn seed_home_pose_axes_and_frames_from_the_origins() {
+    let c = chain(SEED, "linkmount", "tcp");
+    let link2base = seed_link2base();
+    let t = link2base[link2base.len() - 1];
     for r in 0..4 {
         for k in 0..4 {
             assert!(close(c.home[r][k], t[r][k], 1e-15), "M[{r}][{k}]");
@@ -155,7 +171,11 @@ fn seed_screw_axes_and_home_pose() {
             }
         }
     }
+}
 
+#[test]
+fn seed_limits_and_core_types() {
+    let c = chain(SEED, "linkmount", "tcp");
     // Limits as written: joint2 has only `lower`, joint3 only `upper`, 4-6 no <limit>.
     let inf = f64::INFINITY;
     let limits: Vec<(f64, f64)> = c.joints.iter().map(|j| (j.lower, j.upper)).collect();
@@ -457,13 +477,12 @@ impl Case {
     }
 }
 
-#[test]
-fn every_error_kind() {
+/// Malformed documents and values: one case per way of getting them wrong.
+fn document_error_cases() -> Vec<Case> {
     use ErrorKind as K;
-    let ok = two_links("");
-    let orphan = "<joint name=\"j\" type=\"fixed\"><child link=\"b\"/></joint>".to_string();
     let far = "<origin xyz=\"1e308 0 0\"/>";
-    let cases = [
+    let orphan = "<joint name=\"j\" type=\"fixed\"><child link=\"b\"/></joint>".to_string();
+    vec![
         case(
             K::Xml,
             "<robot name=\"r\"><link name=\"a\"></robot>",
@@ -524,6 +543,14 @@ fn every_error_kind() {
             &["home", "not finite"],
         )
         .path("a", "c"),
+    ]
+}
+
+/// Well-formed documents whose tree or request is wrong.
+fn tree_error_cases() -> Vec<Case> {
+    use ErrorKind as K;
+    let ok = two_links("");
+    vec![
         case(
             K::UnknownLink,
             robot_of(&["a"], &[bare("j", "fixed", "a", "nowhere")]),
@@ -603,7 +630,14 @@ fn every_error_kind() {
         )
         .path("a", "c")
         .joints(&["k", "j"]),
-    ];
+    ]
+}
+
+#[test]
+fn every_error_kind() {
+    use ErrorKind as K;
+    let mut cases = document_error_cases();
+    cases.extend(tree_error_cases());
     let mut seen = std::collections::HashSet::new();
     for c in &cases {
         let e = error(&c.text, c.base, c.tip, c.joints);
