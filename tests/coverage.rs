@@ -353,6 +353,72 @@ fn sample_tool_positions(
         .collect()
 }
 
+/// The largest distance, in lift coordinates, of the mesh's edge midpoints and centroids
+/// from the surface at `k`: the half-width of the shell where the mesh and the true
+/// surface may disagree.
+fn shell_half_width(name: &str, lift: &LiftInverse, mesh: &Mesh, k: f64) -> f64 {
+    let mut e = 0.0_f64;
+    for t in mesh.blocks.iter().flat_map(|b| &b.tris) {
+        let [a, b, c] = t.map(|i| mesh.verts[i as usize]);
+        let mid = |p: &P3, q: &P3, w: f64| -> Vec3<f64> {
+            Vector(std::array::from_fn(|i| p[i] + w * (q[i] - p[i])))
+        };
+        let centroid: Vec3<f64> = Vector(std::array::from_fn(|i| (a[i] + b[i] + c[i]) / 3.0));
+        for p in [
+            mid(&a, &b, 0.5),
+            mid(&b, &c, 0.5),
+            mid(&a, &c, 0.5),
+            centroid,
+        ] {
+            let s = lift
+                .coordinate(&p)
+                .unwrap_or_else(|| panic!("{name} k={k}: no lift coordinate for {p:?}"));
+            e = e.max((s.norm() - k).abs());
+        }
+    }
+    e
+}
+
+/// How many samples lie inside the mesh at `k`, and how many needed the winding number:
+/// a sample's lift radius decides outside the shell `k ± delta` (checked against the
+/// winding number for the first `N_CHECK` samples), the winding number inside it.
+fn count_inside(
+    name: &str,
+    k: f64,
+    delta: f64,
+    ys: &[Vec3<f64>],
+    radii: &[Option<f64>],
+    mesh: &Mesh,
+    scratch: &mut Vec<([f64; 3], f64)>,
+) -> (usize, usize) {
+    let mut inside = 0usize;
+    let mut n_winding = 0usize;
+    for (idx, (y, r)) in ys.iter().zip(radii).enumerate() {
+        let fast = match r {
+            Some(r) if *r <= k - delta => Some(true),
+            Some(r) if *r >= k + delta => Some(false),
+            _ => None,
+        };
+        let is_inside = match fast {
+            Some(b) if idx >= N_CHECK => b,
+            _ => {
+                n_winding += 1;
+                let w = mesh.inside(&y.0, scratch);
+                if let Some(b) = fast {
+                    assert_eq!(
+                        b, w,
+                        "{name} k={k}: sample {idx} (lift radius {r:?}) classified \
+                         {b} by its lift coordinate, {w} by the winding number"
+                    );
+                }
+                w
+            }
+        };
+        inside += usize::from(is_inside);
+    }
+    (inside, n_winding)
+}
+
 /// Samples one case, checks the coverage at k = 1, 2, 3 and returns the fractions.
 fn check_case(
     name: &str,
@@ -380,57 +446,14 @@ fn check_case(
     for (slot, k) in fractions.iter_mut().zip([1.0_f64, 2.0, 3.0]) {
         lift.surf.grid(k, N_STEPS, &mut grid).unwrap();
         let mesh = Mesh::from_grid(&grid, N_STEPS);
-        // The shell half-width δ: lift coordinates of edge midpoints and centroids.
-        let mut e = 0.0_f64;
-        for t in mesh.blocks.iter().flat_map(|b| &b.tris) {
-            let [a, b, c] = t.map(|i| mesh.verts[i as usize]);
-            let mid = |p: &P3, q: &P3, w: f64| -> Vec3<f64> {
-                Vector(std::array::from_fn(|i| p[i] + w * (q[i] - p[i])))
-            };
-            let centroid: Vec3<f64> = Vector(std::array::from_fn(|i| (a[i] + b[i] + c[i]) / 3.0));
-            for p in [
-                mid(&a, &b, 0.5),
-                mid(&b, &c, 0.5),
-                mid(&a, &c, 0.5),
-                centroid,
-            ] {
-                let s = lift
-                    .coordinate(&p)
-                    .unwrap_or_else(|| panic!("{name} k={k}: no lift coordinate for {p:?}"));
-                e = e.max((s.norm() - k).abs());
-            }
-        }
+        let e = shell_half_width(name, &lift, &mesh, k);
         assert!(
             e < 0.01 * k,
             "{name} k={k}: mesh deviates {e} from the surface"
         );
         let delta = 4.0 * e + 1e-6 * k;
 
-        let mut inside = 0usize;
-        let mut n_winding = 0usize;
-        for (idx, (y, r)) in ys.iter().zip(&radii).enumerate() {
-            let fast = match r {
-                Some(r) if *r <= k - delta => Some(true),
-                Some(r) if *r >= k + delta => Some(false),
-                _ => None,
-            };
-            let is_inside = match fast {
-                Some(b) if idx >= N_CHECK => b,
-                _ => {
-                    n_winding += 1;
-                    let w = mesh.inside(&y.0, &mut scratch);
-                    if let Some(b) = fast {
-                        assert_eq!(
-                            b, w,
-                            "{name} k={k}: sample {idx} (lift radius {r:?}) classified \
-                             {b} by its lift coordinate, {w} by the winding number"
-                        );
-                    }
-                    w
-                }
-            };
-            inside += usize::from(is_inside);
-        }
+        let (inside, n_winding) = count_inside(name, k, delta, &ys, &radii, &mesh, &mut scratch);
         let frac = inside as f64 / N_SAMPLES as f64;
         let p = chi2_3_probability(k);
         println!(
