@@ -191,7 +191,32 @@ pub fn fit(
         warnings: Vec::new(),
     };
     fit.warnings = warnings(&fit, &design, &x, data.clipped, needed);
+    check_finite(&fit)?;
     Ok(fit)
+}
+
+/// A result with a non-finite number in it is an error, not an answer (it would reach the
+/// JSON as `null`).
+fn check_finite(fit: &Fit) -> Result<(), FitError> {
+    let p = &fit.prediction_error;
+    let mut numbers = [fit.log_likelihood, p.median, p.worst]
+        .into_iter()
+        .chain(fit.residual_floor.into_iter().flatten());
+    let per_joint = fit.joints.iter().all(|j| {
+        j.cov.iter().flatten().all(|x| x.is_finite())
+            && j.cov_se.iter().flatten().flatten().all(|x| x.is_finite())
+            && [j.sigma2, j.sigma2_se]
+                .into_iter()
+                .flatten()
+                .all(f64::is_finite)
+    });
+    if per_joint && numbers.all(f64::is_finite) {
+        Ok(())
+    } else {
+        Err(FitError::Numerical(
+            "the fitted model holds a non-finite number (overflow)".into(),
+        ))
+    }
 }
 
 fn check_chain(joints: &[Joint<f64>], home: &Transform<f64>) -> Result<(), FitError> {
@@ -532,4 +557,47 @@ fn distances(design: &Design, x: &[Matrix6<f64>], d6: &[f64], floor: bool) -> Ve
             (d, r.max(1))
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ppoe::chain::screw_noise;
+
+    fn small_fit() -> Fit {
+        let joints = [
+            Joint::new("a", JointKind::Revolute, [0., 0., 1., 0., 0., 0.], -3., 3.).prepared(),
+            Joint::new(
+                "b",
+                JointKind::Revolute,
+                [0., 1., 0., -0.3, 0., 0.],
+                -2.,
+                2.,
+            )
+            .prepared(),
+        ];
+        let home =
+            Transform::from_parts([[1., 0., 0.], [0., 1., 0.], [0., 0., 1.]], [0.4, 0., 0.3]);
+        let truth: Vec<_> = joints.iter().map(|j| screw_noise(&j.screw, 1e-4)).collect();
+        let samples = crate::simulate::samples(&joints, &home, &truth, None, 200, 3);
+        fit(&joints, &home, &samples, None, Model::Joint, &mut |_, _| {}).unwrap()
+    }
+
+    #[test]
+    fn a_non_finite_number_anywhere_in_the_result_is_an_error() {
+        let f = small_fit();
+        assert!(check_finite(&f).is_ok());
+        let spoilers: [fn(&mut Fit); 5] = [
+            |f| f.joints[1].cov[2][3] = f64::NAN,
+            |f| f.joints[0].sigma2_se = Some(f64::INFINITY),
+            |f| f.log_likelihood = f64::NEG_INFINITY,
+            |f| f.prediction_error.worst = f64::NAN,
+            |f| f.residual_floor = Some([0.0, f64::INFINITY]),
+        ];
+        for spoil in spoilers {
+            let mut g = f.clone();
+            spoil(&mut g);
+            assert!(matches!(check_finite(&g), Err(FitError::Numerical(_))));
+        }
+    }
 }
