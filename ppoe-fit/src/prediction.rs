@@ -35,9 +35,9 @@ pub struct PredictionError {
     pub configurations: usize,
 }
 
-/// The prediction error of the coefficients `x` (one per term; `joint_terms` of them are
-/// the joints', a residual floor after them is left out) with `unit_cov`, the covariance
-/// of the unit coefficients (`Design::units` order).
+/// The prediction error of the coefficients `x` (one per term of the design, a residual
+/// floor's set to zero; the first `joint_terms` are the joints') with `unit_cov`, the
+/// covariance of the unit coefficients (`Design::units` order).
 pub(crate) fn prediction_error(
     design: &Design,
     x: &[Matrix6<f64>],
@@ -83,10 +83,5 @@ fn relative_error(
         }
     });
     let expected = (&g * unit_cov).component_mul(&g).sum().max(0.0);
-    let mut sigma = Matrix6::zeros();
-    for (t, xt) in x.iter().enumerate().take(joint_terms) {
-        let a = &design.a[k][t];
-        sigma += a * xt * a.transpose();
-    }
-    expected.sqrt() / sigma.norm()
+    expected.sqrt() / (design.sigma(k, x) - design.r).norm()
 }

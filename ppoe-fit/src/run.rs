@@ -173,7 +173,12 @@ pub fn fit(
     let jn = param.natural_jacobian(design.units.len());
     let info = information(&(jn.transpose() * &m.fisher * &jn));
     let unit_cov = &jn * &info.cov * jn.transpose();
-    let prediction = prediction_error(&design, &x, n, &unit_cov);
+    let joints_only = if with_floor {
+        without_floor(&x)
+    } else {
+        x.clone()
+    };
+    let prediction = prediction_error(&design, &joints_only, n, &unit_cov);
     let gof = goodness_of_fit(&distances(&design, &x, &m.mahalanobis, with_floor));
     let joints_out = joint_fits(joints, &data, &param, &x, &info);
     let floor = with_floor.then(|| [x[n][(0, 0)], x[n][(3, 3)]]);
