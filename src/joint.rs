@@ -255,7 +255,8 @@ impl<T: Real> Joint<T> {
     /// The constants of [`Joint::displacement`] derived from the screw, if computed:
     /// [`Joint::prepared`], [`Joint::from_f64`] and `ppoe-build`'s tables have them;
     /// [`Joint::new`] (a `const fn`, which cannot compute them) has `None`, and then each
-    /// call derives them again (BENCHMARKS.md: `ppoe_seed/ours_joint_new`). They are
+    /// call derives them again (BENCHMARKS.md, shipped with this package:
+    /// `ppoe_seed/ours_joint_new`). They are
     /// those of the screw when the joint was built: call [`Joint::prepared`] again after
     /// changing `screw`; [`ChainView::check`](crate::chain::ChainView::check) verifies them.
     #[inline]

@@ -6,11 +6,13 @@
 //! pytransform3d's `uncertainty` module it is built on.
 //!
 //! * `#![no_std]`, no allocator, fixed-size types, no `unsafe`. No function is meant to
-//!   panic. A link-time check on Cortex-M4F (`scripts/firmware.sh`) *proves* the public
+//!   panic. A link-time check on Cortex-M4F (run by the repository's CI, see the README)
+//!   *proves* the public
 //!   entry points of `so3`, `se3`, `uncertainty`, `chain` (the PPOE included) and the
 //!   eigen-decomposition panic-free in f32 and f64; the surface grids (`lift_surface`,
 //!   `marginal_surface`, `surface_grid`, `to_projected_ellipsoid*`, `LiftSurface::grid`)
-//!   keep bounds checks the compiler cannot remove and are only fuzzed (`FUZZING.md`),
+//!   keep bounds checks the compiler cannot remove and are only fuzzed (FUZZING.md,
+//!   shipped with this package),
 //!   which finds panics but proves their absence for none.
 //!   Checked functions return an [`Error`] for bad input and for results that are not
 //!   finite.

@@ -17,7 +17,7 @@ pub enum Convention {
     /// Right (local) perturbation of the returned pose: `T = T̄·Exp(η)`, η ~ N(0, Σ),
     /// η in the tip frame. `Σ = Ad(M⁻¹)·C·Ad(M⁻¹)ᵀ`. The default: the covariance of the
     /// sampled perturbation to second order (Monte Carlo: within a few % at the seed
-    /// robot's noise, `tests/monte_carlo.rs`; by noise level in ACCURACY.md).
+    /// robot's noise; by noise level in ACCURACY.md, shipped with this package).
     #[default]
     Right,
     /// Left (global) perturbation: `T = Exp(η)·T̄`, η in the base frame,
@@ -27,7 +27,7 @@ pub enum Convention {
     /// pytransform3d's example, reproduced exactly: `Ad(M)·C·Ad(M)ᵀ` in the last step,
     /// and continuous joints clipped to their stated limits. For migration and
     /// comparison only: it is the covariance of neither perturbation (Monte Carlo: more
-    /// than 30 % off on the seed robot, `tests/monte_carlo.rs`).
+    /// than 30 % off on the seed robot; ACCURACY.md).
     Pytransform3d,
 }
 

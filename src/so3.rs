@@ -165,7 +165,8 @@ pub fn exp<T: Real>(w: &Vec3<T>) -> Mat3<T> {
 /// Of the axis, for elements of R accurate to a few ε: ≈ ε/sin θ up to π/2 (the
 /// axis's own conditioning for small angles, ≤ √2·ε from π/4 on), a few ε beyond; within
 /// 16 ε of the exact axis for θ ∈ [π/2, π] and within 4 ε/sin θ below
-/// (`tests/robustness_numerics.rs`). pytransform3d, which switches only 10⁻⁶ from π, has
+/// (the repository's numerical robustness tests). pytransform3d, which switches only 10⁻⁶
+/// from π, has
 /// an axis error ≈ ε/δ at π − δ outside that band (2·10⁻¹⁰ at its edge) and up to δ/2
 /// inside it.
 pub fn log_axis_angle<T: Real>(rot: &Mat3<T>) -> (Vec3<T>, T) {
@@ -247,7 +248,7 @@ pub fn log<T: Real>(rot: &Mat3<T>) -> Vec3<T> {
 ///
 /// A few ε absolute in every element for any ω, including just above the series
 /// cut-off (within 8 ε of a series oracle for θ ∈ [SERIES, 64·SERIES],
-/// `tests/robustness_numerics.rs`).
+/// measured by the repository's numerical robustness tests).
 ///
 /// # Example
 ///

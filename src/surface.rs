@@ -36,7 +36,7 @@
 //! **lift** surface ([`lift_surface`]) maps each point of the marginal ellipsoid back to
 //! its most likely full perturbation and through the exact exponential, so it bends like
 //! the cloud, at one exp per grid point, and is identical to the marginal ellipsoid at
-//! first order. It is therefore the default ([`Surface::default`]): `tests/coverage.rs`
+//! first order. It is therefore the default ([`Surface::default`]): the repository's coverage test
 //! samples the PPOE's model (10⁵ samples) and checks that the fraction of tool positions
 //! inside the triangulated lift surface is within 0.03 of `chi2_3_probability(k)` for
 //! k = 1, 2, 3 on the seed robot and another test chain. Its limit: it under-covers
@@ -375,7 +375,8 @@ pub fn position_ellipsoid<T: Real>(
 /// terms have zero mean for a zero-mean Gaussian, so this is exact up to fourth-order
 /// moments. On the seed robot the sampled mean sits 0.10 m from t̄ and this predicts it
 /// within about 5 mm, the size of the neglected fourth-order terms
-/// (`tests/monte_carlo.rs` measures 5.3 ± 1.3 mm). Non-finite input gives non-finite output.
+/// (the repository's Monte Carlo test measures 5.3 ± 1.3 mm). Non-finite input gives
+/// non-finite output.
 #[inline]
 pub fn position_mean_second_order<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Vec3<T> {
     let c = symmetric_part(cov).block(0, 1); // c[j][k] = Σ_{ω_j v_k}
@@ -396,7 +397,7 @@ pub fn position_mean_second_order<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -
 /// conditional mean `E[η | v] = Σ[:, v]·Σ_vv⁻¹·v`), so `{ξ(s) : ‖s‖ = k}` is the
 /// first-order k-σ marginal ellipsoid lifted to 6D and mapped through the exact
 /// exponential: it bends like the sampled cloud. See the [module docs](self) for why this
-/// is the default (`tests/coverage.rs`: the sampled tool positions inside it are within
+/// is the default (the repository's coverage test: the sampled tool positions inside it are within
 /// 0.03 of the Gaussian fractions 0.20 / 0.74 / 0.97 at k = 1 / 2 / 3).
 ///
 /// `Σ_vv^(−½)` is the symmetric pseudo-inverse square root ([`SymmetricEigen::pinv_sqrt`]):

@@ -16,7 +16,7 @@
 //! f64, and 0.9x with flush-to-zero set; the one- and four-lane schedules, whose lanes
 //! hold the same values as the two defined lanes, ran at full speed. So the subnormals
 //! are in the undefined lanes (f32's narrow range underflows where f64's does not). Four
-//! lanes leave no lane undefined (`benches/lanes_ratio.rs` measures the ratios).
+//! lanes leave no lane undefined (BENCHMARKS.md, shipped with this package, gives the ratios).
 //!
 //! Why groups are built as locals: the joints go in groups of W, and each group's W
 //! congruences and covariances are built as local values, then gathered into lanes
@@ -49,7 +49,7 @@
 //!
 //! The rounding: with W lanes the transported covariances are summed in W partial sums,
 //! added at the end (`Sums::total`), so results of different widths differ by a few ε of
-//! the covariance's size (`tests/lanes.rs` compares widths 1, 2 and 4).
+//! the covariance's size (the repository's lane tests compare widths 1, 2 and 4).
 
 use crate::chain::ChainView;
 use crate::linalg::{Mat6, Matrix};

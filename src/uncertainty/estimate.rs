@@ -49,7 +49,7 @@ impl<T: Real> Default for IterationOptions<T> {
     /// (s: the scale of the data, see [`IterationOptions`]). 50 leaves a margin: on
     /// pytransform3d's 200 fusion reference problems the longest run that reaches a
     /// stationary point takes 24 iterations (f64; 22 in f32,
-    /// `tests/fusion_golden.rs`), and the Fréchet estimators used 50 already.
+    /// the repository's fusion golden tests), and the Fréchet estimators used 50 already.
     fn default() -> Self {
         Self {
             max_iterations: 50,

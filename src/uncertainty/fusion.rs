@@ -90,7 +90,7 @@ fn fusion_terms<T: Real>(
 /// `converged == false` means no start reached a stationary point within
 /// `max_iterations`; the mean is then the lowest-cost point found and **not** a
 /// fused estimate. (On such inputs pytransform3d's iteration cycles, with steps of 0.1
-/// to 1.5 even after 300 iterations; see `tests/fusion_golden.rs`.)
+/// to 1.5 even after 300 iterations; measured by the repository's fusion golden tests.)
 ///
 /// Cost: one run, or K + 1 (see Method); each iteration evaluates the K residuals, their
 /// Jacobians and the gradient once (Gauss-Newton) or 13 times (Newton: 12 for the
@@ -99,7 +99,7 @@ fn fusion_terms<T: Real>(
 /// # Accuracy
 ///
 /// A converged mean is a local minimum of V to the rounding of the problem. On
-/// pytransform3d's 200 reference problems (`tests/fusion_golden.rs`; 48 with poses up
+/// pytransform3d's 200 reference problems (the repository's fusion golden tests; 48 with poses up
 /// to 150° apart; a third of all with covariances of condition 10³–10⁶), measured against
 /// pytransform3d's fixed point wherever it has one (198 problems), error
 /// `max|a − b| / max(1, max|b|)`: f64 mean 4.3e-13, covariance 3.8e-15, V 4.4e-13; f32
