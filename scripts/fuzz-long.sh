@@ -8,6 +8,7 @@
 #   scripts/fuzz-long.sh
 #   FUZZ_SECONDS=600 FUZZ_TARGETS="core_f64" scripts/fuzz-long.sh
 #   FUZZ_RUNS=10000000 FUZZ_SECONDS=7200 FUZZ_TARGETS="urdf" scripts/fuzz-long.sh
+#   FUZZ_SANITIZER=none ...   # no AddressSanitizer; the rows then say so
 set -uo pipefail
 
 export FUZZ_SECONDS="${FUZZ_SECONDS:-3600}"
@@ -23,7 +24,9 @@ commit="$(git -C "$root" describe --always --dirty 2>/dev/null || echo unknown)"
 while read -r target execs rc secs; do
     crashes=0
     [ "$rc" -ne 0 ] && crashes=1
-    printf '| %s | %s | %s | %s | %s | %s |\n' "$day" "$target" "$commit" "$secs" "$execs" "$crashes" \
+    label="$target"
+    [ "${FUZZ_SANITIZER:-address}" != address ] && label="$target (sanitizer ${FUZZ_SANITIZER})"
+    printf '| %s | %s | %s | %s | %s | %s |\n' "$day" "$label" "$commit" "$secs" "$execs" "$crashes" \
         >>"$root/FUZZING.md"
 done <"$summary"
 exit $status

@@ -11,6 +11,10 @@
 #                                                        # corpus <dir>/<target>, seeded from the
 #                                                        # committed one when it does not exist:
 #                                                        # a long campaign continued in later runs
+#   FUZZ_SANITIZER=none scripts/fuzz-smoke.sh   # without AddressSanitizer (default: address):
+#                                                        # the fuzzed crates forbid `unsafe`; debug
+#                                                        # assertions and overflow checks stay on
+#                                                        # (FUZZING.md: when and why)
 #
 # Crash inputs are kept in fuzz/artifacts/<target>/. Prints the executions per target.
 set -euo pipefail
@@ -22,6 +26,7 @@ FUZZ_SUMMARY="${FUZZ_SUMMARY:-}" # if set, "target executions rc seconds" lines 
 FUZZ_SEED="${FUZZ_SEED:-}"       # libFuzzer -seed (default: random)
 FUZZ_RUNS="${FUZZ_RUNS:-}"       # libFuzzer -runs (default: unbounded, time only)
 FUZZ_CORPUS="${FUZZ_CORPUS:-}"   # an absolute corpus directory to keep (default: a temporary copy)
+FUZZ_SANITIZER="${FUZZ_SANITIZER:-address}" # cargo fuzz --sanitizer (address or none)
 extra=()
 [ -n "$FUZZ_SEED" ] && extra+=("-seed=$FUZZ_SEED")
 [ -n "$FUZZ_RUNS" ] && extra+=("-runs=$FUZZ_RUNS")
@@ -39,7 +44,7 @@ if ! rustup run nightly rustc --version >/dev/null 2>&1; then
 fi
 
 start=$(date +%s)
-cargo +nightly fuzz build
+cargo +nightly fuzz build --sanitizer "$FUZZ_SANITIZER"
 
 work="$(mktemp -d "${TMPDIR:-/tmp}/ppoe-fuzz.XXXXXX")"
 trap 'rm -rf "$work"' EXIT
@@ -59,7 +64,7 @@ for target in $FUZZ_TARGETS; do
     log="$work/$target.log"
     t0=$(date +%s)
     set +e
-    cargo +nightly fuzz run "$target" "$corpus" -- \
+    cargo +nightly fuzz run --sanitizer "$FUZZ_SANITIZER" "$target" "$corpus" -- \
         -max_total_time="$FUZZ_SECONDS" -max_len="$FUZZ_MAX_LEN" -timeout=30 \
         -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="artifacts/$target/" \
         ${extra[@]+"${extra[@]}"} >"$log" 2>&1
