@@ -83,7 +83,12 @@ fn transform_valid<T: Fz>(t: &Transform<T>) -> bool {
 fn check_transform<T: Fz>(t: &Transform<T>) {
     let r = t.check();
     if !transform_finite(t) {
-        assert_eq!(r, Err(Error::NonFinite), "Transform::check ({}) of {t:?}", T::NAME);
+        assert_eq!(
+            r,
+            Err(Error::NonFinite),
+            "Transform::check ({}) of {t:?}",
+            T::NAME
+        );
     }
     if r.is_ok() {
         assert_rigid("Transform::check accepted", t, T::TOL);
@@ -94,7 +99,12 @@ fn check_transform<T: Fz>(t: &Transform<T>) {
 fn check_cov_input<T: Fz>(c: &Mat6<T>) {
     let r = check_covariance(c);
     if !c.is_finite() {
-        assert_eq!(r, Err(Error::NonFinite), "check_covariance ({}) of {c:?}", T::NAME);
+        assert_eq!(
+            r,
+            Err(Error::NonFinite),
+            "check_covariance ({}) of {c:?}",
+            T::NAME
+        );
         return;
     }
     if r.is_ok() {
@@ -138,95 +148,149 @@ pub fn run<T: Fz>(inp: &CoreInput) {
     for c in [&c1, &c2, &c3] {
         check_cov_input(c);
     }
+    unchecked_never_panic(&t1, &t2, &c1, &c2, &xi);
+    unchecked_valid_domain(&t1, &t2, &c1, &c2, &xi);
+    let pool = [c1, c2, c3];
+    check_chain(inp, &pool);
+    check_fusion_and_estimation(inp, &pool);
+}
 
-    // --- Unchecked operations: must not panic on anything --------------------------
-    black_box(se3::exp(&xi));
-    black_box(se3::log(&t1));
+/// A covariance in the valid domain: passes `check_covariance`, entries bounded.
+fn cov_ok<T: Fz>(c: &Mat6<T>) -> bool {
+    check_covariance(c).is_ok() && cov_bounded(c)
+}
+
+/// Unchecked operations: must not panic on anything.
+fn unchecked_never_panic<T: Fz>(
+    t1: &Transform<T>,
+    t2: &Transform<T>,
+    c1: &Mat6<T>,
+    c2: &Mat6<T>,
+    xi: &Vec6<T>,
+) {
+    black_box(se3::exp(xi));
+    black_box(se3::log(t1));
     black_box(so3::exp(&xi.rotation()));
     black_box(so3::log(&t1.rotation));
     black_box(so3::log_axis_angle(&t2.rotation));
-    black_box(se3::left_jacobian(&xi));
-    black_box(se3::left_jacobian_inv(&xi));
+    black_box(se3::left_jacobian(xi));
+    black_box(se3::left_jacobian_inv(xi));
     black_box(so3::left_jacobian_inv(&xi.rotation()));
-    black_box(se3::curly_hat(&xi));
+    black_box(se3::curly_hat(xi));
     black_box(t1.adjoint());
     black_box(t1.inverse());
-    black_box(t1.transport_covariance(&c1));
+    black_box(t1.transport_covariance(c1));
     for order in [Order::Second, Order::Fourth] {
-        black_box(uncertainty::concat_globally(&t1, &c1, &t2, &c2, order));
+        black_box(uncertainty::concat_globally(t1, c1, t2, c2, order));
     }
-    black_box(uncertainty::concat_locally(&t1, &t2, &c1, &c2));
-    black_box(uncertainty::invert(&t1, &c1));
-    black_box(uncertainty::left_to_right(&t1, &c1));
-    black_box(ppoe::surface::position_mean_second_order(&t1, &c1));
+    black_box(uncertainty::concat_locally(t1, t2, c1, c2));
+    black_box(uncertainty::invert(t1, c1));
+    black_box(uncertainty::left_to_right(t1, c1));
+    black_box(ppoe::surface::position_mean_second_order(t1, c1));
     black_box(se3::screw_axis(&xi.rotation(), &xi.translation(), c1.0[0][0]).ok());
-    black_box(ppoe::chain::screw_noise(&xi, c1.0[1][1]));
-    black_box(ppoe::chain::bending_noise(&xi.translation(), &c1.block(0, 0)));
+    black_box(ppoe::chain::screw_noise(xi, c1.0[1][1]));
+    black_box(ppoe::chain::bending_noise(
+        &xi.translation(),
+        &c1.block(0, 0),
+    ));
+}
 
-    // --- Valid-domain properties of the unchecked operations -----------------------
-    let cov_ok = |c: &Mat6<T>| check_covariance(c).is_ok() && cov_bounded(c);
-    if vec_bounded(&xi) {
-        let e = se3::exp(&xi);
+/// Valid-domain properties of the unchecked operations.
+fn unchecked_valid_domain<T: Fz>(
+    t1: &Transform<T>,
+    t2: &Transform<T>,
+    c1: &Mat6<T>,
+    c2: &Mat6<T>,
+    xi: &Vec6<T>,
+) {
+    if vec_bounded(xi) {
+        let e = se3::exp(xi);
         assert_rigid("se3::exp of a bounded twist", &e, T::TOL);
         let l = se3::log(&e);
-        assert!(l.is_finite(), "se3::log ({}) of exp({xi:?}) = {l:?}", T::NAME);
+        assert!(
+            l.is_finite(),
+            "se3::log ({}) of exp({xi:?}) = {l:?}",
+            T::NAME
+        );
     }
-    if transform_valid(&t1) {
-        let l = se3::log(&t1);
-        assert!(l.is_finite(), "se3::log ({}) of valid {t1:?} = {l:?}", T::NAME);
-        if cov_ok(&c1) {
-            let (inv, ic) = uncertainty::invert(&t1, &c1);
-            assert_rigid("invert mean", &inv, T::TOL * T::lit(2.0));
-            assert_sym("invert cov", &ic);
-        }
-        if transform_valid(&t2) && cov_ok(&c1) && cov_ok(&c2) {
-            for order in [Order::Second, Order::Fourth] {
-                let (m, c) = uncertainty::concat_globally(&t1, &c1, &t2, &c2, order);
-                assert_rigid("concat_globally mean", &m, T::TOL * T::lit(3.0));
-                assert_sym("concat_globally cov", &c);
-            }
-            let (m, c) = uncertainty::concat_locally(&t1, &t2, &c1, &c2);
-            assert_rigid("concat_locally mean", &m, T::TOL * T::lit(3.0));
-            assert_sym("concat_locally cov", &c);
-        }
+    if !transform_valid(t1) {
+        return;
     }
+    let l = se3::log(t1);
+    assert!(
+        l.is_finite(),
+        "se3::log ({}) of valid {t1:?} = {l:?}",
+        T::NAME
+    );
+    if cov_ok(c1) {
+        let (inv, ic) = uncertainty::invert(t1, c1);
+        assert_rigid("invert mean", &inv, T::TOL * T::lit(2.0));
+        assert_sym("invert cov", &ic);
+    }
+    if transform_valid(t2) && cov_ok(c1) && cov_ok(c2) {
+        for order in [Order::Second, Order::Fourth] {
+            let (m, c) = uncertainty::concat_globally(t1, c1, t2, c2, order);
+            assert_rigid("concat_globally mean", &m, T::TOL * T::lit(3.0));
+            assert_sym("concat_globally cov", &c);
+        }
+        let (m, c) = uncertainty::concat_locally(t1, t2, c1, c2);
+        assert_rigid("concat_locally mean", &m, T::TOL * T::lit(3.0));
+        assert_sym("concat_locally cov", &c);
+    }
+}
 
-    // --- The PPOE on a small chain -------------------------------------------------
+/// One fuzzed joint, and whether it lies in the valid domain.
+fn build_joint<T: Fz>(ji: &JointIn) -> (Joint<T>, bool) {
+    let kind = match ji.kind % 3 {
+        0 => JointKind::Revolute,
+        1 => JointKind::Continuous,
+        _ => JointKind::Prismatic,
+    };
+    let a: Vec3<T> = vals(&ji.axis);
+    let q: Vec3<T> = vals(&ji.q);
+    let mut valid = true;
+    let screw = if ji.raw {
+        valid &= vec_bounded(&a) && vec_bounded(&q);
+        Vec6::from_parts(a, q)
+    } else {
+        let norm = a.norm();
+        valid &= vec_bounded(&q) && norm.is_finite() && norm > T::ZERO;
+        let s = a.scale(T::ONE / norm);
+        valid &= s.is_finite();
+        if kind == JointKind::Prismatic {
+            Vec6::from_parts(Vec3::zeros(), s)
+        } else {
+            Vec6::from_parts(s, q.cross(&s))
+        }
+    };
+    valid &= vec_bounded(&screw);
+    // Limits clip θ: a finite limit beyond BOUND can move θ out of the valid domain.
+    // Unbounded limits must point outwards (lower −∞, upper +∞).
+    let (lo, up): (T, T) = (ji.lower.get(), ji.upper.get());
+    valid &= lo.is_nan() || lo == T::neg_infinity() || bounded(lo);
+    valid &= up.is_nan() || up == T::infinity() || bounded(up);
+    // Half the joints with their displacement constants (the tables' fast path),
+    // half without (derived per call).
+    let joint = Joint::new("", kind, screw.0, ji.lower.get(), ji.upper.get());
+    (
+        if ji.kind % 2 == 0 {
+            joint.prepared()
+        } else {
+            joint
+        },
+        valid,
+    )
+}
+
+/// The PPOE on a small chain: 1 to 3 fuzzed joints.
+fn check_chain<T: Fz>(inp: &CoreInput, pool: &[Mat6<T>; 3]) {
     let n = 1 + inp.n_joints as usize % 3;
     let mut joints = [Joint::new("", JointKind::Revolute, [T::ZERO; 6], T::ZERO, T::ZERO); 3];
     let mut chain_valid = true;
     for (j, ji) in joints.iter_mut().zip(&inp.joints).take(n) {
-        let kind = match ji.kind % 3 {
-            0 => JointKind::Revolute,
-            1 => JointKind::Continuous,
-            _ => JointKind::Prismatic,
-        };
-        let a: Vec3<T> = vals(&ji.axis);
-        let q: Vec3<T> = vals(&ji.q);
-        let screw = if ji.raw {
-            chain_valid &= vec_bounded(&a) && vec_bounded(&q);
-            Vec6::from_parts(a, q)
-        } else {
-            let norm = a.norm();
-            chain_valid &= vec_bounded(&q) && norm.is_finite() && norm > T::ZERO;
-            let s = a.scale(T::ONE / norm);
-            chain_valid &= s.is_finite();
-            if kind == JointKind::Prismatic {
-                Vec6::from_parts(Vec3::zeros(), s)
-            } else {
-                Vec6::from_parts(s, q.cross(&s))
-            }
-        };
-        chain_valid &= vec_bounded(&screw);
-        // Limits clip θ: a finite limit beyond BOUND can move θ out of the valid domain.
-        // Unbounded limits must point outwards (lower −∞, upper +∞).
-        let (lo, up): (T, T) = (ji.lower.get(), ji.upper.get());
-        chain_valid &= lo.is_nan() || lo == T::neg_infinity() || bounded(lo);
-        chain_valid &= up.is_nan() || up == T::infinity() || bounded(up);
-        // Half the joints with their displacement constants (the tables' fast path),
-        // half without (derived per call).
-        let joint = Joint::new("", kind, screw.0, ji.lower.get(), ji.upper.get());
-        *j = if ji.kind % 2 == 0 { joint.prepared() } else { joint };
+        let (joint, valid) = build_joint(ji);
+        *j = joint;
+        chain_valid &= valid;
     }
     let home: Transform<T> = inp.home.get();
     chain_valid &= transform_valid(&home);
@@ -234,7 +298,6 @@ pub fn run<T: Fz>(inp: &CoreInput) {
         joints: &joints[..n],
         home,
     };
-    let pool = [c1, c2, c3];
     let covs: Vec<Mat6<T>> = (0..n).map(|i| pool[inp.cov_pick[i] as usize % 3]).collect();
     let pool_psd = [&inp.c1, &inp.c2, &inp.c3].map(|c| c.psd_by_construction::<T>());
     let covs_psd = (0..n).all(|i| pool_psd[inp.cov_pick[i] as usize % 3]);
@@ -251,49 +314,100 @@ pub fn run<T: Fz>(inp: &CoreInput) {
             .zip(&joints[..n])
             .all(|(&t, j)| bounded(t * vec_amax(&j.screw)))
         && covs.iter().all(cov_bounded);
-    for conv in [Convention::Right, Convention::Left, Convention::Pytransform3d] {
-        let r = chain.ppoe_checked(&thetas, &covs, conv);
-        black_box(chain.ppoe_fourth_order(&thetas, &covs, conv).ok());
-        if !inputs_finite {
-            assert!(r.is_err(), "ppoe_checked ({}) accepted non-finite input", T::NAME);
-        }
-        // The checked entry point also checks the chain (unit screw axes, rigid home pose).
-        // Valid input: Ok, or Overflow if the result is not finite in T (never Ok(±∞/NaN)).
-        if inputs_pass && chain.check().is_ok() {
-            let ok = matches!(r, Ok(_) | Err(Error::Overflow));
-            assert!(ok, "ppoe_checked ({}) rejected valid input: {r:?}", T::NAME);
-        }
-        if let Ok(out) = &r {
-            let finite = out.cov.is_finite() && transform_finite(&out.pose);
-            assert!(finite, "ppoe_checked ({}) returned Ok with a non-finite result", T::NAME);
-        }
-        if chain.check().is_err() {
-            assert!(r.is_err(), "ppoe_checked ({}) accepted an invalid chain", T::NAME);
-        }
-        if chain_valid && inputs_valid && chain.check().is_ok() {
-            let out = r.expect("valid");
-            let tol = T::TOL * T::from_usize(n + 2);
-            assert_rigid("ppoe_checked pose", &out.pose, tol);
-            // PSD is promised for PSD inputs only: an input indefinite within
-            // check_covariance's tolerance stays indefinite through the congruences
-            // Ad·Σ·Adᵀ (Sylvester's law of inertia) and its negative eigenvalue can grow
-            // relative to ‖Σ‖ by up to κ(Ad)², however small it was (FUZZING.md, "Bugs
-            // found"). Symmetry always.
-            if covs_psd {
-                assert_cov("ppoe_checked cov", &out.cov);
-            } else {
-                assert_sym("ppoe_checked cov", &out.cov);
-            }
-        }
+    let domain = Domain {
+        inputs_finite,
+        inputs_pass,
+        valid: chain_valid && inputs_valid,
+        covs_psd,
+    };
+    for conv in [
+        Convention::Right,
+        Convention::Left,
+        Convention::Pytransform3d,
+    ] {
+        check_ppoe(&chain, &thetas, &covs, conv, &domain);
     }
     black_box(chain.forward_kinematics(&thetas).ok());
     let mut cols = [Vec6::zeros(); 3];
     black_box(chain.body_jacobian(&thetas, &mut cols[..n]).ok());
     // Length mismatches are errors, not panics.
-    assert!(chain.ppoe_checked(&thetas[..n - 1], &covs, Convention::Right).is_err());
-    assert!(chain.ppoe(&thetas, &covs[..n - 1], Convention::Left).is_err());
+    assert!(chain
+        .ppoe_checked(&thetas[..n - 1], &covs, Convention::Right)
+        .is_err());
+    assert!(chain
+        .ppoe(&thetas, &covs[..n - 1], Convention::Left)
+        .is_err());
+}
 
-    // --- Pose fusion and Gaussian estimation --------------------------------------
+/// What the oracle knows of the PPOE's inputs.
+struct Domain {
+    /// Every θ and covariance is finite.
+    inputs_finite: bool,
+    /// Every θ is finite and every covariance passes `check_covariance`.
+    inputs_pass: bool,
+    /// Chain and inputs lie in the valid domain (bounded, see `bounded`).
+    valid: bool,
+    /// Every joint covariance is PSD by construction.
+    covs_psd: bool,
+}
+
+/// `ppoe_checked` (and `ppoe_fourth_order`, which must not panic) in one convention.
+fn check_ppoe<T: Fz>(
+    chain: &ChainView<'_, T>,
+    thetas: &[T],
+    covs: &[Mat6<T>],
+    conv: Convention,
+    d: &Domain,
+) {
+    let r = chain.ppoe_checked(thetas, covs, conv);
+    black_box(chain.ppoe_fourth_order(thetas, covs, conv).ok());
+    if !d.inputs_finite {
+        assert!(
+            r.is_err(),
+            "ppoe_checked ({}) accepted non-finite input",
+            T::NAME
+        );
+    }
+    // The checked entry point also checks the chain (unit screw axes, rigid home pose).
+    // Valid input: Ok, or Overflow if the result is not finite in T (never Ok(±∞/NaN)).
+    if d.inputs_pass && chain.check().is_ok() {
+        let ok = matches!(r, Ok(_) | Err(Error::Overflow));
+        assert!(ok, "ppoe_checked ({}) rejected valid input: {r:?}", T::NAME);
+    }
+    if let Ok(out) = &r {
+        let finite = out.cov.is_finite() && transform_finite(&out.pose);
+        assert!(
+            finite,
+            "ppoe_checked ({}) returned Ok with a non-finite result",
+            T::NAME
+        );
+    }
+    if chain.check().is_err() {
+        assert!(
+            r.is_err(),
+            "ppoe_checked ({}) accepted an invalid chain",
+            T::NAME
+        );
+    }
+    if d.valid && chain.check().is_ok() {
+        let out = r.expect("valid");
+        let tol = T::TOL * T::from_usize(thetas.len() + 2);
+        assert_rigid("ppoe_checked pose", &out.pose, tol);
+        // PSD is promised for PSD inputs only: an input indefinite within
+        // check_covariance's tolerance stays indefinite through the congruences
+        // Ad·Σ·Adᵀ (Sylvester's law of inertia) and its negative eigenvalue can grow
+        // relative to ‖Σ‖ by up to κ(Ad)², however small it was (FUZZING.md, "Bugs
+        // found"). Symmetry always.
+        if d.covs_psd {
+            assert_cov("ppoe_checked cov", &out.cov);
+        } else {
+            assert_sym("ppoe_checked cov", &out.cov);
+        }
+    }
+}
+
+/// Pose fusion and Gaussian estimation on 0 to 4 samples.
+fn check_fusion_and_estimation<T: Fz>(inp: &CoreInput, pool: &[Mat6<T>; 3]) {
     let k = inp.n_samples as usize % 5;
     let samples: Vec<Transform<T>> = inp.samples[..k].iter().map(|s| s.get()).collect();
     let scovs: Vec<Mat6<T>> = (0..k).map(|i| pool[i % 3]).collect();
@@ -302,7 +416,11 @@ pub fn run<T: Fz>(inp: &CoreInput) {
     if k == 0 {
         assert_eq!(fusion.err(), Some(Error::Empty));
     } else if !all_finite {
-        assert!(fusion.is_err(), "pose_fusion ({}) accepted non-finite input", T::NAME);
+        assert!(
+            fusion.is_err(),
+            "pose_fusion ({}) accepted non-finite input",
+            T::NAME
+        );
     }
     if let Ok(f) = &fusion {
         assert_sym_bits("pose_fusion cov", &f.cov);
@@ -313,19 +431,33 @@ pub fn run<T: Fz>(inp: &CoreInput) {
             assert_rigid("pose_fusion mean", &f.mean, tol);
         }
     }
-    let est = uncertainty::estimate_gaussian_transform(&samples);
+    check_estimation(&samples, k);
+}
+
+/// The Gaussian estimators on the same samples.
+fn check_estimation<T: Fz>(samples: &[Transform<T>], k: usize) {
+    let est = uncertainty::estimate_gaussian_transform(samples);
     match k {
         0 => assert_eq!(est.err(), Some(Error::Empty)),
         1 => assert_eq!(est.err(), Some(Error::TooFewSamples)),
         _ if samples.iter().any(|s| !transform_finite(s)) => {
-            assert_eq!(est.err(), Some(Error::NonFinite), "estimate_gaussian_transform ({})", T::NAME)
+            assert_eq!(
+                est.err(),
+                Some(Error::NonFinite),
+                "estimate_gaussian_transform ({})",
+                T::NAME
+            )
         }
         _ => {}
     }
     if let Ok(e) = &est {
         assert_sym_bits("estimate_gaussian_transform cov", &e.cov);
         if samples.iter().all(transform_valid) {
-            assert_rigid("estimate_gaussian_transform mean", &e.mean, T::TOL * T::lit(8.0));
+            assert_rigid(
+                "estimate_gaussian_transform mean",
+                &e.mean,
+                T::TOL * T::lit(8.0),
+            );
             assert_cov("estimate_gaussian_transform cov", &e.cov);
         }
     }

@@ -31,7 +31,12 @@ pub struct EigenInput {
 fn check_eigen<T: Fz, const N: usize>(a: &Matrix<T, N, N>) {
     let r = SymmetricEigen::new(a);
     if !a.is_finite() {
-        assert_eq!(r.err(), Some(Error::NonFinite), "SymmetricEigen ({}) of {a:?}", T::NAME);
+        assert_eq!(
+            r.err(),
+            Some(Error::NonFinite),
+            "SymmetricEigen ({}) of {a:?}",
+            T::NAME
+        );
         return;
     }
     let e = r.unwrap_or_else(|e| panic!("SymmetricEigen ({}) of finite {a:?}: {e:?}", T::NAME));
@@ -42,8 +47,18 @@ fn check_eigen<T: Fz, const N: usize>(a: &Matrix<T, N, N>) {
         black_box(e.reconstruct());
         return;
     }
-    assert!(e.converged, "SymmetricEigen ({}) did not converge in {} sweeps: {a:?}", T::NAME, e.sweeps);
-    assert!(e.values.is_finite(), "SymmetricEigen ({}) values {:?} of {a:?}", T::NAME, e.values);
+    assert!(
+        e.converged,
+        "SymmetricEigen ({}) did not converge in {} sweeps: {a:?}",
+        T::NAME,
+        e.sweeps
+    );
+    assert!(
+        e.values.is_finite(),
+        "SymmetricEigen ({}) values {:?} of {a:?}",
+        T::NAME,
+        e.values
+    );
     for k in 1..N {
         assert!(
             e.values.0[k - 1] >= e.values.0[k],
@@ -57,7 +72,12 @@ fn check_eigen<T: Fz, const N: usize>(a: &Matrix<T, N, N>) {
     let vt_v = e.vectors.transpose() * e.vectors;
     let ortho = mat_amax(&(vt_v - Matrix::identity()));
     let otol = T::lit(64.0) * nn * T::EPS;
-    assert!(ortho <= otol, "SymmetricEigen ({}) ‖VᵀV − I‖ = {:e} of {a:?}", T::NAME, ortho.to_f64());
+    assert!(
+        ortho <= otol,
+        "SymmetricEigen ({}) ‖VᵀV − I‖ = {:e} of {a:?}",
+        T::NAME,
+        ortho.to_f64()
+    );
     // Reconstruction of the symmetric part, relative to max|A| (plus the subnormal grain).
     let sym = a.symmetrize();
     let rec = e.reconstruct();
@@ -72,8 +92,16 @@ fn check_eigen<T: Fz, const N: usize>(a: &Matrix<T, N, N>) {
         s.to_f64()
     );
     // Derived matrices: finite.
-    for (what, m) in [("sqrt", e.sqrt()), ("pinv_sqrt", e.pinv_sqrt()), ("clamped", e.clamped().reconstruct())] {
-        assert!(m.is_finite(), "SymmetricEigen::{what} ({}) of {a:?}: {m:?}", T::NAME);
+    for (what, m) in [
+        ("sqrt", e.sqrt()),
+        ("pinv_sqrt", e.pinv_sqrt()),
+        ("clamped", e.clamped().reconstruct()),
+    ] {
+        assert!(
+            m.is_finite(),
+            "SymmetricEigen::{what} ({}) of {a:?}: {m:?}",
+            T::NAME
+        );
     }
 }
 
@@ -82,7 +110,11 @@ pub fn run<T: Fz>(inp: &EigenInput) {
     let m6: Mat6<T> = inp.m.get();
     let v3: [T; 9] = inp.m3.map(|x| x.get());
     let m3: Mat3<T> = if inp.m3_raw {
-        Mat3::from_rows([[v3[0], v3[1], v3[2]], [v3[3], v3[4], v3[5]], [v3[6], v3[7], v3[8]]])
+        Mat3::from_rows([
+            [v3[0], v3[1], v3[2]],
+            [v3[3], v3[4], v3[5]],
+            [v3[6], v3[7], v3[8]],
+        ])
     } else {
         mirror::<T, 3>(&v3)
     };
@@ -106,8 +138,7 @@ pub fn run<T: Fz>(inp: &EigenInput) {
         && mat_amax(&m6).to_f64() <= T::BOUND * T::BOUND
         && k.abs().to_f64() <= 100.0;
 
-    type Surf<T> =
-        fn(&Transform<T>, &Mat6<T>, T, usize, &mut [Vec3<T>]) -> Result<usize, Error>;
+    type Surf<T> = fn(&Transform<T>, &Mat6<T>, T, usize, &mut [Vec3<T>]) -> Result<usize, Error>;
     let surfaces: [(&str, Surf<T>); 3] = [
         ("to_projected_ellipsoid", surface::to_projected_ellipsoid),
         ("lift_surface", surface::lift_surface),
@@ -147,7 +178,11 @@ pub fn run<T: Fz>(inp: &EigenInput) {
         Ok((t, radii)) => {
             assert!(mean3.is_finite() && m3.is_finite());
             if mat_amax(&m3).to_f64() <= T::BOUND * T::BOUND {
-                assert!(radii.is_finite(), "to_ellipsoid ({}) radii {radii:?}", T::NAME);
+                assert!(
+                    radii.is_finite(),
+                    "to_ellipsoid ({}) radii {radii:?}",
+                    T::NAME
+                );
                 assert_rigid("to_ellipsoid rotation", &t, T::lit(256.0) * T::EPS);
             }
         }

@@ -283,10 +283,24 @@ pub fn transform_finite<T: Fz>(t: &Transform<T>) -> bool {
 /// Asserts that `t` is finite with an orthonormal rotation (`‖RᵀR − I‖ ≤ tol`, det > 0).
 #[track_caller]
 pub fn assert_rigid<T: Fz>(what: &str, t: &Transform<T>, tol: T) {
-    assert!(transform_finite(t), "{what} ({}): not finite: {t:?}", T::NAME);
+    assert!(
+        transform_finite(t),
+        "{what} ({}): not finite: {t:?}",
+        T::NAME
+    );
     let e = ortho_error(&t.rotation);
-    assert!(e <= tol, "{what} ({}): ‖RᵀR − I‖ = {:e} > {:e}: {t:?}", T::NAME, e.to_f64(), tol.to_f64());
-    assert!(det3(&t.rotation) > T::ZERO, "{what} ({}): det R ≤ 0: {t:?}", T::NAME);
+    assert!(
+        e <= tol,
+        "{what} ({}): ‖RᵀR − I‖ = {:e} > {:e}: {t:?}",
+        T::NAME,
+        e.to_f64(),
+        tol.to_f64()
+    );
+    assert!(
+        det3(&t.rotation) > T::ZERO,
+        "{what} ({}): det R ≤ 0: {t:?}",
+        T::NAME
+    );
 }
 
 /// Asserts that a covariance output is finite and exactly symmetric.

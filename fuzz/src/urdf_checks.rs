@@ -45,7 +45,11 @@ pub fn run(data: &[u8]) {
         // The same chain with the joints listed explicitly.
         let names = chain.joint_names();
         let again = urdf.chain(base, tip, Some(&names));
-        assert_eq!(again.as_ref(), Ok(&chain), "explicit joint list gives another chain");
+        assert_eq!(
+            again.as_ref(),
+            Ok(&chain),
+            "explicit joint list gives another chain"
+        );
         // Codegen: f64 always works; the f32 table iff the geometry fits in f32.
         let text = codegen::generate(&chain, "FUZZ", Scalar::F64, &source)
             .unwrap_or_else(|e| panic!("codegen::generate (f64) failed on an Ok chain: {e}"));
@@ -56,7 +60,10 @@ pub fn run(data: &[u8]) {
         }
         for j in &chain.joints {
             let lit = str_lit(&j.name);
-            assert!(text.contains(&lit), "generated text lacks joint name {lit}:\n{text}");
+            assert!(
+                text.contains(&lit),
+                "generated text lacks joint name {lit}:\n{text}"
+            );
         }
         assert!(text.contains(&format!("ppoe::chain::Chain<f64, {}>", chain.joints.len())));
         let ctors = text.matches("ppoe::chain::Joint::new(").count()
@@ -81,7 +88,10 @@ pub fn run(data: &[u8]) {
             home.translation.is_finite() && home.rotation.is_finite(),
             "home pose not finite: {home:?}"
         );
-        let rchain = ChainView { joints: &joints, home };
+        let rchain = ChainView {
+            joints: &joints,
+            home,
+        };
         let zeros = vec![0.0; joints.len()];
         let covs = vec![Mat6::<f64>::identity() * 1e-4; joints.len()];
         // "Finite geometry": every screw and home value within 1e100 (larger ones may
