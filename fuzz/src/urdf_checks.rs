@@ -79,12 +79,20 @@ fn check_codegen(chain: &RobotChain, source: &Source) {
     let ctors = text.matches("ppoe::chain::Joint::new(").count()
         + text.matches("ppoe::chain::Joint::with_constants(").count();
     assert_eq!(ctors, chain.joints.len());
-    let fits = chain
+    let geometry_fits = chain
         .joints
         .iter()
         .flat_map(|j| j.screw.iter())
         .chain(chain.home.iter().flatten())
         .all(|&x| (x as f32).is_finite());
+    // A range admits a finite f32 position unless rounding to f32 moves its lower end
+    // above f32::MAX or its upper end below −f32::MAX (both ends are ordered and not NaN
+    // in an Ok chain, and rounding keeps the order).
+    let limits_fit = chain
+        .joints
+        .iter()
+        .all(|j| (j.lower as f32) <= f32::MAX && (j.upper as f32) >= -f32::MAX);
+    let fits = geometry_fits && limits_fit;
     let both = codegen::generate(chain, "FUZZ", Scalar::Both, source);
     assert_eq!(both.is_ok(), fits, "Scalar::Both: {both:?}");
 }
