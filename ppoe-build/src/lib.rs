@@ -7,6 +7,12 @@
 //! pose M of the tip and the joint limits exactly as pytransform3d does, and
 //! writes Rust source with a `pub const` [`ppoe::chain::Chain`].
 //!
+//! It is also the one reader of URDF files for every other host tool: the same parse
+//! gives the kinematics, the limits, the link/joint tree ([`Urdf::tree`]) and each link's
+//! `<visual>`s and materials ([`urdf::Visual`], [`urdf::Material`]) for pictures; and one
+//! pipeline, [`Table`], turns a chain into a table's source (Rust or C, the source hash, the
+//! noise model), for [`Config`] and any other front end alike.
+//!
 //! The screw axes and home poses agree bit for bit with pytransform3d 3.17.0 on every chain
 //! of `test_data/golden/ppoe` (the products are evaluated in numpy/OpenBLAS's order, with its
 //! fused multiply-adds; see `tests/golden.rs`); on another BLAS pytransform3d itself moves

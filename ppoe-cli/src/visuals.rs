@@ -2,7 +2,8 @@
 //! cylinders, boxes and spheres with their `<origin>` and material colours, and meshes
 //! (STL, OBJ) loaded from the URDF's directory (`package://` or relative paths); a mesh
 //! that cannot be found or read (or a COLLADA `.dae`) is skipped with a notice.
-//! Kinematic tables (`ppoe-build`) ignore visuals; only the drawing tools read them.
+//! The `<visual>`s are read by ppoe-build with the rest of the URDF (`Link::visuals`, the
+//! link/joint tree); this file turns them into shapes and places them, and reads no XML.
 //!
 //! Each visual is placed with the product of exponentials: a link below the `k`-th chain
 //! joint is at `T_base←link(θ) = Exp(S₁θ₁)·…·Exp(S_kθ_k)·T_base←link(0)`, where
