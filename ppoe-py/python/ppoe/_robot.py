@@ -1,0 +1,141 @@
+"""The Probabilistic Product of Exponentials of a robot loaded from URDF."""
+
+import numpy as np
+
+from . import _ppoe
+from ._checks import as_f64
+
+_CONVENTIONS = ("right", "left", "pytransform3d")
+
+
+def _readonly(a):
+    a.flags.writeable = False
+    return a
+
+
+class ProbabilisticRobotKinematics:
+    """A serial chain of a URDF robot with uncertain joints (Meyer et al. 2022).
+
+    The model is ``T = D_1 Exp(xi_1) ... D_n Exp(xi_n) M``, ``D_i = Exp(S_i theta_i)``,
+    ``xi_i ~ N(0, covs[i])`` (exponential coordinates, rotation first, base frame).
+
+    Parameters
+    ----------
+    robot_urdf : str
+        The URDF document (its text, not a file name).
+    ee_frame : str
+        The tip link.
+    base_frame : str
+        The base link.
+    joint_names : list of str
+        The moving joints of the chain, base to tip. Moving joints on the path that are
+        not listed are frozen at 0.
+    convention : {"right", "left", "pytransform3d"}, optional (default: "right")
+        The covariance returned: of the right perturbation ``T = Tbar Exp(eta)`` (tip
+        frame), of the left one ``T = Exp(eta) Tbar`` (base frame), or exactly
+        pytransform3d's example (``Ad(M) C Ad(M)^T`` in the last step, continuous joints
+        clipped to their limits), which is the covariance of neither.
+
+    Attributes
+    ----------
+    joint_limits : array, shape (n, 2)
+        Lower and upper limit of each joint (``-inf``/``inf`` if unbounded).
+    screw_axes_home : array, shape (n, 6)
+        Screw axes in the base frame at the home pose, rotation first.
+    ee2base_home : array, shape (4, 4)
+        The home pose M of the tip in the base frame.
+
+    Raises
+    ------
+    ppoe.PpoeError
+        If the URDF cannot be read or the chain cannot be built (the message names the
+        element and position).
+    """
+
+    def __init__(self, robot_urdf, ee_frame, base_frame, joint_names, convention="right"):
+        if convention not in _CONVENTIONS:
+            raise ValueError(f"convention must be one of {_CONVENTIONS}, not {convention!r}")
+        self.convention = convention
+        names = None if joint_names is None else [str(n) for n in joint_names]
+        self._robot = _ppoe.Robot(str(robot_urdf), str(base_frame), str(ee_frame), names)
+        self.joint_names = names
+        self.joint_limits = _readonly(self._robot.limits())
+        self.screw_axes_home = _readonly(self._robot.screw_axes())
+        self.ee2base_home = _readonly(self._robot.home())
+
+    @property
+    def n_joints(self):
+        """int: the number of moving joints."""
+        return self._robot.n_joints
+
+    def _thetas(self, thetas):
+        n = self.n_joints
+        a = as_f64(thetas, "thetas")
+        if a.ndim == 1 and a.shape == (n,):
+            return a[np.newaxis], True
+        if a.ndim == 2 and a.shape[1] == n:
+            return a, False
+        raise ValueError(f"thetas: expected shape ({n},) or (N, {n}), got {a.shape}")
+
+    def forward_kinematics(self, thetas):
+        """Tip pose(s) for joint values clipped to the limits.
+
+        Parameters
+        ----------
+        thetas : array-like, shape (n,) or (N, n)
+            Joint values.
+
+        Returns
+        -------
+        ee2base : array, shape (4, 4) or (N, 4, 4)
+            The tip pose in the base frame.
+        """
+        batch, single = self._thetas(thetas)
+        poses = self._robot.forward_kinematics(batch)
+        return poses[0] if single else poses
+
+    def probabilistic_forward_kinematics(self, thetas, covs):
+        """Tip pose(s) and covariance(s) of the PPOE.
+
+        Joint values are clipped to the limits (``np.clip`` semantics). The batch form
+        runs in the core with the GIL released, and each of its results equals the
+        single call of the same configuration exactly.
+
+        Parameters
+        ----------
+        thetas : array-like, shape (n,) or (N, n)
+            Joint values.
+        covs : array-like, shape (n, 6, 6) or (N, n, 6, 6)
+            Covariance of each joint's displacement (exponential coordinates, rotation
+            first), shared by all configurations or one set per configuration; each
+            symmetric positive semi-definite (within sqrt(eps) relative).
+
+        Returns
+        -------
+        ee2base : array, shape (4, 4) or (N, 4, 4)
+            The tip pose in the base frame.
+        cov : array, shape (6, 6) or (N, 6, 6)
+            Its covariance in the convention chosen at construction.
+
+        Raises
+        ------
+        ppoe.PpoeError
+            For a covariance that is not symmetric PSD, or a non-finite result (naming
+            the configuration of a batch).
+        ValueError
+            For wrong shapes or dtypes, NaN or infinity.
+        """
+        n = self.n_joints
+        batch, single = self._thetas(thetas)
+        c = as_f64(covs, "covs")
+        if c.shape == (n, 6, 6):
+            pass
+        elif single and c.shape == (1, n, 6, 6):
+            c = c[0]
+        elif not single and c.shape == (len(batch), n, 6, 6):
+            pass
+        else:
+            want = f"({n}, 6, 6)" if single else f"({n}, 6, 6) or ({len(batch)}, {n}, 6, 6)"
+            raise ValueError(f"covs: expected shape {want}, got {c.shape}")
+        poses, out = self._robot.ppoe(batch, c, self.convention)
+        return (poses[0], out[0]) if single else (poses, out)
