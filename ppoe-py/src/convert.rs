@@ -73,7 +73,9 @@ pub(crate) fn mat6s(x: &[f64]) -> Vec<Mat6<f64>> {
 
 /// Appends a transform as a 4×4 row-major matrix.
 pub(crate) fn push_transform(out: &mut Vec<f64>, t: &Transform<f64>) {
-    out.extend(t.to_matrix4().iter().flatten());
+    for row in t.to_matrix4() {
+        out.extend_from_slice(&row);
+    }
 }
 
 /// Appends a matrix row-major.
@@ -81,7 +83,9 @@ pub(crate) fn push_matrix<const R: usize, const C: usize>(
     out: &mut Vec<f64>,
     m: &Matrix<f64, R, C>,
 ) {
-    out.extend(m.0.iter().flatten());
+    for row in &m.0 {
+        out.extend_from_slice(row);
+    }
 }
 
 /// `data` as a numpy array of shape `shape`.
