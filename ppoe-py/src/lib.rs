@@ -12,6 +12,7 @@ use pyo3::prelude::*;
 mod convert;
 mod estimate;
 mod robot;
+mod ros;
 mod surface;
 mod uncertainty;
 
@@ -34,6 +35,7 @@ fn _ppoe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     uncertainty::register(m)?;
     estimate::register(m)?;
     surface::register(m)?;
+    ros::register(m)?;
     m.add_class::<robot::Robot>()?;
     Ok(())
 }
