@@ -1,7 +1,8 @@
 //! pytransform3d's ellipsoids of an uncertainty (`ppoe::surface`).
 
 use crate::convert::{
-    array, elements, matrix, matrix_array, transform, transform_array, vec3, vec3_array, Pair,
+    array, elements, matrix, matrix_array, transform, transform_array, vec3, vec3_array, Array,
+    Pair,
 };
 use crate::core_err;
 use numpy::{PyArrayDyn, PyReadonlyArrayDyn};
@@ -18,6 +19,9 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(to_ellipsoid, m)?)?;
     m.add_function(wrap_pyfunction!(to_projected_ellipsoid, m)?)?;
     m.add_function(wrap_pyfunction!(symmetric_eigen6, m)?)?;
+    m.add_function(wrap_pyfunction!(surface_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(chi2_3_radius, m)?)?;
+    m.add_function(wrap_pyfunction!(chi2_3_probability, m)?)?;
     Ok(())
 }
 
@@ -83,4 +87,52 @@ fn symmetric_eigen6<'py>(py: Python<'py>, a: PyReadonlyArrayDyn<'py, f64>) -> Py
         array(py, e.values.0.to_vec(), &[6])?,
         matrix_array(py, &e.vectors)?,
     ))
+}
+
+/// `ppoe::surface::surface_grid` of `kind` ('lift', 'marginal' or 'pytransform3d') at
+/// radius `k`: an (n_steps², 3) array, row-major over the grid.
+#[pyfunction]
+fn surface_grid<'py>(
+    py: Python<'py>,
+    kind: &str,
+    mean: PyReadonlyArrayDyn<'py, f64>,
+    cov: PyReadonlyArrayDyn<'py, f64>,
+    k: f64,
+    n_steps: usize,
+) -> PyResult<Array<'py>> {
+    let kind = match kind {
+        "lift" => surface::Surface::Lift,
+        "marginal" => surface::Surface::Marginal,
+        "pytransform3d" => surface::Surface::Pytransform3d,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "kind must be 'lift', 'marginal' or 'pytransform3d', not {kind:?}"
+            )))
+        }
+    };
+    if n_steps > MAX_STEPS {
+        return Err(PyValueError::new_err(format!(
+            "n_steps must be at most {MAX_STEPS}, got {n_steps}"
+        )));
+    }
+    let mean = transform(elements(&mean, "pose", &[4, 4])?, 0);
+    let cov = matrix(elements(&cov, "cov", &[6, 6])?, 0);
+    let mut out = vec![Vec3::zeros(); n_steps * n_steps];
+    let n = surface::surface_grid(kind, &mean, &cov, k, n_steps, &mut out).map_err(core_err)?;
+    let flat: Vec<f64> = out[..n].iter().flat_map(|p| p.0).collect();
+    array(py, flat, &[n, 3])
+}
+
+/// The radius k whose 3D Gaussian ball holds probability `p` (χ²₃), or an error for p
+/// outside [0, 1).
+#[pyfunction]
+fn chi2_3_radius(p: f64) -> PyResult<f64> {
+    surface::chi2_3_radius(p)
+        .ok_or_else(|| PyValueError::new_err(format!("probability must be in [0, 1), got {p}")))
+}
+
+/// The probability that a 3D standard normal vector has norm at most k.
+#[pyfunction]
+fn chi2_3_probability(k: f64) -> f64 {
+    surface::chi2_3_probability(k)
 }
