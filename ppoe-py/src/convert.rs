@@ -2,8 +2,10 @@
 //! float64 arrays; the shapes are checked here again so that a direct call of
 //! `ppoe._ppoe` with a wrong array is an error, never a wrong answer.
 
-use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
-use ppoe::{Mat3, Mat6, Matrix, Transform, Vec3, Vector};
+use numpy::{
+    Element, PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods,
+};
+use ppoe::{Mat3, Mat6, Matrix, Real, Transform, Vec3, Vector};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
@@ -14,11 +16,11 @@ pub(crate) type Array<'py> = Bound<'py, PyArrayDyn<f64>>;
 pub(crate) type Pair<'py> = (Array<'py>, Array<'py>);
 
 /// The elements of `a` if its shape is `shape` (`usize::MAX` matches any length).
-pub(crate) fn elements<'a>(
-    a: &'a PyReadonlyArrayDyn<'_, f64>,
+pub(crate) fn elements<'a, T: Element>(
+    a: &'a PyReadonlyArrayDyn<'_, T>,
     name: &str,
     shape: &[usize],
-) -> PyResult<&'a [f64]> {
+) -> PyResult<&'a [T]> {
     let got = a.shape();
     let ok = got.len() == shape.len()
         && got
@@ -54,34 +56,37 @@ fn shape_text(shape: &[usize]) -> String {
 }
 
 /// A row-major `R×C` block of `x` starting at element `at`.
-pub(crate) fn matrix<const R: usize, const C: usize>(x: &[f64], at: usize) -> Matrix<f64, R, C> {
+pub(crate) fn matrix<T: Copy, const R: usize, const C: usize>(
+    x: &[T],
+    at: usize,
+) -> Matrix<T, R, C> {
     Matrix(core::array::from_fn(|r| {
         core::array::from_fn(|c| x[at + r * C + c])
     }))
 }
 
 /// The 4×4 row-major transform at element `at` (the last row is not read).
-pub(crate) fn transform(x: &[f64], at: usize) -> Transform<f64> {
-    let m: Matrix<f64, 4, 4> = matrix(x, at);
+pub(crate) fn transform<T: Real>(x: &[T], at: usize) -> Transform<T> {
+    let m: Matrix<T, 4, 4> = matrix(x, at);
     Transform::from_matrix4(&m.0)
 }
 
 /// The 6×6 matrices of `x`, one per 36 elements.
-pub(crate) fn mat6s(x: &[f64]) -> Vec<Mat6<f64>> {
+pub(crate) fn mat6s<T: Copy>(x: &[T]) -> Vec<Mat6<T>> {
     (0..x.len() / 36).map(|k| matrix(x, 36 * k)).collect()
 }
 
 /// Appends a transform as a 4×4 row-major matrix.
-pub(crate) fn push_transform(out: &mut Vec<f64>, t: &Transform<f64>) {
+pub(crate) fn push_transform<T: Real>(out: &mut Vec<T>, t: &Transform<T>) {
     for row in t.to_matrix4() {
         out.extend_from_slice(&row);
     }
 }
 
 /// Appends a matrix row-major.
-pub(crate) fn push_matrix<const R: usize, const C: usize>(
-    out: &mut Vec<f64>,
-    m: &Matrix<f64, R, C>,
+pub(crate) fn push_matrix<T: Copy, const R: usize, const C: usize>(
+    out: &mut Vec<T>,
+    m: &Matrix<T, R, C>,
 ) {
     for row in &m.0 {
         out.extend_from_slice(row);
@@ -89,11 +94,11 @@ pub(crate) fn push_matrix<const R: usize, const C: usize>(
 }
 
 /// `data` as a numpy array of shape `shape`.
-pub(crate) fn array<'py>(
+pub(crate) fn array<'py, T: Element>(
     py: Python<'py>,
-    data: Vec<f64>,
+    data: Vec<T>,
     shape: &[usize],
-) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+) -> PyResult<Bound<'py, PyArrayDyn<T>>> {
     PyArray1::from_vec(py, data).reshape(shape.to_vec())
 }
 

@@ -9,6 +9,7 @@
 
 use pyo3::prelude::*;
 
+mod batch;
 mod convert;
 mod estimate;
 mod robot;

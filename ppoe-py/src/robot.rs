@@ -1,12 +1,12 @@
-//! A robot loaded from URDF (ppoe-build's chain extraction) and the core's PPOE and
-//! forward kinematics on it, one configuration or a batch, with the GIL released.
+//! A robot loaded from URDF (ppoe-build's chain extraction), in f64 and f32; its batch
+//! PPOE and forward kinematics are in `batch`.
 
-use crate::convert::{array, elements, matrix, push_matrix, push_transform, transform_array, Pair};
+use crate::batch;
+use crate::convert::{array, transform_array, Array, Pair};
 use crate::{core_err, PpoeError};
-use numpy::{PyArrayDyn, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::{PyArrayDyn, PyReadonlyArrayDyn};
 use ppoe::chain::{ChainView, Convention, Joint, JointKind};
-use ppoe::uncertainty::check_covariance;
-use ppoe::{Error, Mat6, Transform};
+use ppoe::Transform;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
@@ -15,6 +15,9 @@ use pyo3::prelude::*;
 pub(crate) struct Robot {
     joints: Vec<Joint<f64>>,
     home: Transform<f64>,
+    /// The same chain in f32 (`Joint::from_f64`, `Transform::from_f64`), for float32 input.
+    joints32: Vec<Joint<f32>>,
+    home32: Transform<f32>,
 }
 
 fn convention(name: &str) -> PyResult<Convention> {
@@ -36,11 +39,6 @@ fn kind_name(kind: JointKind) -> &'static str {
     }
 }
 
-/// The error of configuration `i` of a batch: the core's message, and which one.
-fn batch_err(i: usize, e: Error) -> PyErr {
-    PpoeError::new_err(format!("configuration {i}: {e}"))
-}
-
 impl Robot {
     fn view(&self) -> ChainView<'_, f64> {
         ChainView {
@@ -49,51 +47,11 @@ impl Robot {
         }
     }
 
-    /// The PPOE of every configuration: `covs` holds n covariances shared by all, or n
-    /// per configuration. Writes 16 + 36 values per configuration.
-    fn ppoe_all(
-        &self,
-        count: usize,
-        thetas: &[f64],
-        covs: &[f64],
-        shared: bool,
-        convention: Convention,
-    ) -> Result<(Vec<f64>, Vec<f64>), PyErr> {
-        let n = self.joints.len();
-        let mut per = vec![Mat6::zeros(); n];
-        if shared {
-            per = crate::convert::mat6s(covs);
-            for c in &per {
-                check_covariance(c).map_err(core_err)?;
-            }
+    fn view32(&self) -> ChainView<'_, f32> {
+        ChainView {
+            joints: &self.joints32,
+            home: self.home32,
         }
-        let (mut poses, mut out_covs) = (
-            Vec::with_capacity(16 * count),
-            Vec::with_capacity(36 * count),
-        );
-        let view = self.view();
-        for i in 0..count {
-            if !shared {
-                for (k, c) in per.iter_mut().enumerate() {
-                    *c = matrix(covs, 36 * (i * n + k));
-                    check_covariance(c).map_err(|e| batch_err(i, e))?;
-                }
-            }
-            let th = &thetas[i * n..(i + 1) * n];
-            if !th.iter().all(|t| t.is_finite()) {
-                return Err(batch_err(i, Error::NonFinite));
-            }
-            let r = view
-                .ppoe(th, &per, convention)
-                .map_err(|e| batch_err(i, e))?;
-            if !(r.cov.is_finite() && r.pose.rotation.is_finite() && r.pose.translation.is_finite())
-            {
-                return Err(batch_err(i, Error::Overflow));
-            }
-            push_transform(&mut poses, &r.pose);
-            push_matrix(&mut out_covs, &r.cov);
-        }
-        Ok((poses, out_covs))
     }
 }
 
@@ -108,16 +66,20 @@ impl Robot {
         let robot = ppoe_build::Urdf::parse(urdf).map_err(err)?;
         let chain = robot.chain(base, tip, joints.as_deref()).map_err(err)?;
         // As RobotChain::to_core_joints, without leaking the names (the math needs none).
-        let joints = chain
+        let exact: Vec<Joint<f64>> = chain
             .joints
             .iter()
-            .map(|j| Joint::from_f64(&Joint::new("", j.kind, j.screw, j.lower, j.upper)))
+            .map(|j| Joint::new("", j.kind, j.screw, j.lower, j.upper))
             .collect();
+        let home = chain.home_transform();
         let robot = Robot {
-            joints,
-            home: chain.home_transform(),
+            joints: exact.iter().map(Joint::from_f64).collect(),
+            home,
+            joints32: exact.iter().map(Joint::from_f64).collect(),
+            home32: Transform::from_f64(&home),
         };
         robot.view().check().map_err(core_err)?;
+        robot.view32().check().map_err(core_err)?;
         Ok(robot)
     }
 
@@ -154,24 +116,22 @@ impl Robot {
         transform_array(py, &self.home)
     }
 
-    /// Forward kinematics of N configurations `thetas` (N, n) → (N, 4, 4).
+    /// Forward kinematics of N configurations `thetas` (N, n) → (N, 4, 4), float64.
     fn forward_kinematics<'py>(
         &self,
         py: Python<'py>,
         thetas: PyReadonlyArrayDyn<'py, f64>,
-    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let n = self.joints.len();
-        let th = elements(&thetas, "thetas", &[usize::MAX, n])?;
-        let count = thetas.shape()[0];
-        let out = py.detach(|| -> Result<Vec<f64>, PyErr> {
-            let mut out = Vec::with_capacity(16 * count);
-            for i in 0..count {
-                let t = self.view().forward_kinematics(&th[i * n..(i + 1) * n]);
-                push_transform(&mut out, &t.map_err(|e| batch_err(i, e))?);
-            }
-            Ok(out)
-        })?;
-        array(py, out, &[count, 4, 4])
+    ) -> PyResult<Array<'py>> {
+        batch::forward_kinematics(py, self.view(), &thetas)
+    }
+
+    /// [`Robot::forward_kinematics`] in float32 (the chain rounded to f32).
+    fn forward_kinematics_f32<'py>(
+        &self,
+        py: Python<'py>,
+        thetas: PyReadonlyArrayDyn<'py, f32>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f32>>> {
+        batch::forward_kinematics(py, self.view32(), &thetas)
     }
 
     /// The PPOE of N configurations `thetas` (N, n) with covariances (n, 6, 6) shared by
@@ -183,20 +143,30 @@ impl Robot {
         covs: PyReadonlyArrayDyn<'py, f64>,
         convention_name: &str,
     ) -> PyResult<Pair<'py>> {
-        let n = self.joints.len();
-        let conv = convention(convention_name)?;
-        let th = elements(&thetas, "thetas", &[usize::MAX, n])?;
-        let count = thetas.shape()[0];
-        let shared = covs.ndim() == 3;
-        let c = if shared {
-            elements(&covs, "covs", &[n, 6, 6])?
-        } else {
-            elements(&covs, "covs", &[count, n, 6, 6])?
-        };
-        let (poses, out_covs) = py.detach(|| self.ppoe_all(count, th, c, shared, conv))?;
-        Ok((
-            array(py, poses, &[count, 4, 4])?,
-            array(py, out_covs, &[count, 6, 6])?,
-        ))
+        batch::ppoe(
+            py,
+            self.view(),
+            &thetas,
+            &covs,
+            convention(convention_name)?,
+        )
+    }
+
+    /// [`Robot::ppoe`] in float32 (the chain rounded to f32).
+    #[allow(clippy::type_complexity)]
+    fn ppoe_f32<'py>(
+        &self,
+        py: Python<'py>,
+        thetas: PyReadonlyArrayDyn<'py, f32>,
+        covs: PyReadonlyArrayDyn<'py, f32>,
+        convention_name: &str,
+    ) -> PyResult<(Bound<'py, PyArrayDyn<f32>>, Bound<'py, PyArrayDyn<f32>>)> {
+        batch::ppoe(
+            py,
+            self.view32(),
+            &thetas,
+            &covs,
+            convention(convention_name)?,
+        )
     }
 }

@@ -106,3 +106,50 @@ def test_attributes_are_read_only(robots):
     r = robots[0]["right"]
     with pytest.raises(ValueError):
         r.joint_limits[0, 0] = 5.0
+
+
+F32_TOL = 1e-5  # the bound of the repository's f32 golden PPOE tests against the oracle
+
+
+@pytest.fixture(scope="module")
+def robots32(seed_urdf):
+    return {
+        c: ppoe.ProbabilisticRobotKinematics(
+            seed_urdf, "tcp", "linkmount", SEED_JOINTS, convention=c, dtype=np.float32
+        )
+        for c in ("pytransform3d", "right", "left")
+    }
+
+
+def test_float32_against_the_oracle(robots, robots32):
+    _, oracle = robots
+    rng = np.random.default_rng(4)
+    for _ in range(200):
+        thetas, covs = random_case(rng)
+        _, rt, compat, right, left = oracle.evaluate(thetas, covs)
+        for conv, want in (("pytransform3d", compat), ("right", right), ("left", left)):
+            t, c = robots32[conv].probabilistic_forward_kinematics(thetas, covs)
+            assert t.dtype == c.dtype == np.float32
+            assert err(t, rt) <= F32_TOL and err(c, want) <= F32_TOL, conv
+
+
+def test_float32_batch_equals_loop_exactly(robots32):
+    r = robots32["right"]
+    rng = np.random.default_rng(5)
+    thetas = rng.uniform(-2, 2, (32, 6))
+    covs = random_case(rng)[1]
+    t, c = r.probabilistic_forward_kinematics(thetas, covs)
+    fk = r.forward_kinematics(thetas)
+    assert fk.dtype == np.float32
+    for i in range(32):
+        ts, cs = r.probabilistic_forward_kinematics(thetas[i], covs)
+        np.testing.assert_array_equal(t[i], ts)
+        np.testing.assert_array_equal(c[i], cs)
+        np.testing.assert_array_equal(fk[i], r.forward_kinematics(thetas[i]))
+
+
+def test_float32_rejects_values_beyond_its_range(robots32, seed_covs):
+    with pytest.raises(ValueError, match="NaN or infinity"):
+        robots32["right"].probabilistic_forward_kinematics(np.full(6, 1e300), seed_covs)
+    with pytest.raises(ValueError, match="dtype"):
+        ppoe.ProbabilisticRobotKinematics("", "tcp", "linkmount", SEED_JOINTS, dtype=np.int32)

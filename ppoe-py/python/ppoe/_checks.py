@@ -9,8 +9,8 @@ boolean arrays, wrong shapes, NaN and infinity are rejected.
 import numpy as np
 
 
-def as_f64(x, name, shape=None, finite=True):
-    """``x`` as a C-contiguous float64 array, checked.
+def as_f64(x, name, shape=None, finite=True, dtype=np.float64):
+    """``x`` as a C-contiguous float64 (or ``dtype``) array, checked.
 
     Parameters
     ----------
@@ -21,7 +21,10 @@ def as_f64(x, name, shape=None, finite=True):
     shape : tuple of (int or None), optional
         The required shape; ``None`` entries match any length.
     finite : bool, optional (default: True)
-        Reject NaN and infinity.
+        Reject NaN and infinity (after the conversion: a float64 value beyond float32's
+        range is rejected, not turned into infinity silently).
+    dtype : numpy dtype, optional (default: float64)
+        The dtype of the result.
 
     Returns
     -------
@@ -43,7 +46,8 @@ def as_f64(x, name, shape=None, finite=True):
         if not ok:
             want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ")"
             raise ValueError(f"{name}: expected shape {want}, got {a.shape}")
-    a = np.ascontiguousarray(a, dtype=np.float64)
+    with np.errstate(over="ignore"):
+        a = np.ascontiguousarray(a, dtype=dtype)
     if finite and not np.isfinite(a).all():
         raise ValueError(f"{name}: input contains NaN or infinity")
     return a

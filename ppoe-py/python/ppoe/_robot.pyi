@@ -1,4 +1,4 @@
-from typing import Literal, Optional, Sequence, Tuple, overload
+from typing import Any, Literal, Optional, Sequence, Tuple, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -7,6 +7,7 @@ Convention = Literal["right", "left", "pytransform3d"]
 
 class ProbabilisticRobotKinematics:
     convention: Convention
+    dtype: np.dtype[Any]
     joint_names: Optional[list[str]]
     joint_limits: npt.NDArray[np.float64]
     screw_axes_home: npt.NDArray[np.float64]
@@ -18,6 +19,7 @@ class ProbabilisticRobotKinematics:
         base_frame: str,
         joint_names: Optional[Sequence[str]],
         convention: Convention = "right",
+        dtype: npt.DTypeLike = np.float64,
     ) -> None: ...
     @property
     def n_joints(self) -> int: ...
