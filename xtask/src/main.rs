@@ -89,6 +89,12 @@ const TASKS: &[Task] = &[
                (installs Chromium if missing)",
     },
     Task {
+        name: "python",
+        command: &["bash", "scripts/python-check.sh"],
+        help: "the Python package: fresh venv, maturin wheel, its pytest suite and \
+               pytransform3d 3.17.0's own uncertainty tests against it (needs PyPI)",
+    },
+    Task {
         name: "fuzz-smoke",
         command: &["bash", "scripts/fuzz-smoke.sh"],
         help: "every fuzz target from the seed corpus, 30 s each (FUZZ_SECONDS, \
