@@ -9,6 +9,7 @@
 
 pub mod core_checks;
 pub mod eigen_checks;
+pub mod mesh_checks;
 pub mod urdf_checks;
 
 use arbitrary::Arbitrary;

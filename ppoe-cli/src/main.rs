@@ -22,6 +22,7 @@ mod fit;
 mod links;
 mod load;
 mod mesh;
+mod meshfile;
 mod names;
 mod output;
 mod picture;

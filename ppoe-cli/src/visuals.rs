@@ -9,9 +9,10 @@
 //! joint is at `T_base←link(θ) = Exp(S₁θ₁)·…·Exp(S_kθ_k)·T_base←link(0)`, where
 //! `T_base←link(0)` is the product of the joint origins from the base down to the link.
 
+use crate::meshfile::{self, Limits};
 use crate::picture::geom::{mul4, Mat4, IDENTITY};
 use crate::picture::{Body, Shape};
-use anyhow::{anyhow, bail};
+use anyhow::anyhow;
 use ppoe_build::urdf::{Geometry, Material, Tree, Visual};
 use ppoe_build::Urdf;
 use std::collections::HashMap;
@@ -86,91 +87,56 @@ fn mesh_candidates(filename: &str, dir: &Path) -> Vec<PathBuf> {
     vec![dir.join(name)]
 }
 
-/// Loads an STL or OBJ mesh, scaled.
-fn load_mesh(path: &Path, scale: [f64; 3]) -> anyhow::Result<Shape> {
-    let ext = path.extension().map(|e| e.to_ascii_lowercase());
-    let (vertices, faces): (Vec<[f64; 3]>, Vec<Vec<u32>>) =
-        match ext.as_ref().and_then(|e| e.to_str()) {
-            Some("stl") => {
-                let mut f = std::fs::File::open(path)?;
-                let m = stl_io::read_stl(&mut f)?;
-                let v = m
-                    .vertices
-                    .iter()
-                    .map(|v| [0, 1, 2].map(|k| v[k] as f64))
-                    .collect();
-                let f = m
-                    .faces
-                    .iter()
-                    .map(|t| t.vertices.iter().map(|&i| i as u32).collect())
-                    .collect();
-                (v, f)
-            }
-            Some("obj") => {
-                let (models, _) = tobj::load_obj(path, &tobj::GPU_LOAD_OPTIONS)?;
-                let mut v = Vec::new();
-                let mut f = Vec::new();
-                for m in models {
-                    let base = v.len() as u32;
-                    v.extend(
-                        m.mesh
-                            .positions
-                            .chunks_exact(3)
-                            .map(|p| [0, 1, 2].map(|k| p[k] as f64)),
-                    );
-                    f.extend(
-                        m.mesh
-                            .indices
-                            .chunks_exact(3)
-                            .map(|t| t.iter().map(|&i| base + i).collect()),
-                    );
-                }
-                (v, f)
-            }
-            _ => bail!("only STL and OBJ meshes are read"),
-        };
-    if vertices.is_empty() || vertices.iter().flatten().any(|x| !x.is_finite()) {
-        bail!("no finite vertices");
-    }
-    let n = vertices.len();
-    if faces
-        .iter()
-        .any(|f: &Vec<u32>| f.len() < 3 || f.iter().any(|&i| i as usize >= n))
-    {
-        bail!("a face with a missing vertex");
-    }
-    let vertices = vertices
-        .into_iter()
-        .map(|p| [0, 1, 2].map(|k| p[k] * scale[k]))
-        .collect();
-    Ok(Shape {
-        vertices,
-        faces,
+/// Loads an STL or OBJ mesh, scaled, within `limits`; with the notice of its reduction,
+/// if it was reduced.
+fn load_mesh(
+    path: &Path,
+    scale: [f64; 3],
+    limits: &Limits,
+) -> Result<(Shape, Option<String>), String> {
+    let format = meshfile::Format::of(path).ok_or("only STL and OBJ meshes are read")?;
+    let bytes = meshfile::read(path, limits)?;
+    let mesh = meshfile::parse(&bytes, format, scale, limits)?;
+    let shape = Shape {
+        vertices: mesh.vertices,
+        faces: mesh.triangles.iter().map(|t| t.to_vec()).collect(),
         closed: false,
-    })
+    };
+    Ok((shape, mesh.reduced))
 }
 
-/// The shape of a geometry, or a notice why it is skipped.
-fn shape(geometry: &Geometry, dir: Option<&Path>) -> Result<Shape, String> {
-    Ok(match geometry {
-        Geometry::Cylinder { radius, length } => Shape::cylinder(*radius, *length),
-        Geometry::Sphere { radius } => Shape::sphere(*radius),
-        Geometry::Box { size } => Shape::cuboid(*size),
-        Geometry::Mesh { filename, scale } => {
-            let Some(dir) = dir else {
-                return Err(format!("mesh '{filename}': no directory to look in"));
-            };
-            let Some(path) = mesh_candidates(filename, dir)
-                .into_iter()
-                .find(|p| p.is_file())
-            else {
-                return Err(format!("mesh '{filename}' not found"));
-            };
-            load_mesh(&path, *scale).map_err(|e| format!("mesh '{}': {e}", path.display()))?
-        }
-        Geometry::Empty => return Err("an empty <geometry>".into()),
-        Geometry::Other { element } => return Err(format!("unknown geometry <{element}>")),
-    })
+/// The shape of a geometry (with a notice if a mesh was reduced), or a notice why it is
+/// skipped.
+fn shape(
+    geometry: &Geometry,
+    dir: Option<&Path>,
+    limits: &Limits,
+) -> Result<(Shape, Option<String>), String> {
+    Ok((
+        match geometry {
+            Geometry::Cylinder { radius, length } => Shape::cylinder(*radius, *length),
+            Geometry::Sphere { radius } => Shape::sphere(*radius),
+            Geometry::Box { size } => Shape::cuboid(*size),
+            Geometry::Mesh { filename, scale } => {
+                let Some(dir) = dir else {
+                    return Err(format!("mesh '{filename}': no directory to look in"));
+                };
+                let Some(path) = mesh_candidates(filename, dir)
+                    .into_iter()
+                    // Any existing path: a device, FIFO or directory is then refused by name.
+                    .find(|p| p.exists())
+                else {
+                    return Err(format!("mesh '{filename}' not found"));
+                };
+                let named = |e: String| format!("mesh '{}': {e}", path.display());
+                let (shape, reduced) = load_mesh(&path, *scale, limits).map_err(named)?;
+                return Ok((shape, reduced.map(named)));
+            }
+            Geometry::Empty => return Err("an empty <geometry>".into()),
+            Geometry::Other { element } => return Err(format!("unknown geometry <{element}>")),
+        },
+        None,
+    ))
 }
 
 /// `T_base←link(0)` and the number of chain joints above `link`, or `None` when the link is
@@ -201,6 +167,21 @@ impl Visuals {
         joints: &[&str],
         dir: Option<&Path>,
     ) -> anyhow::Result<(Visuals, Vec<String>)> {
+        Self::from_urdf_with(urdf, base, joints, dir, &Limits::default())
+    }
+
+    /// [`Visuals::from_urdf`] with the bounds on mesh files given (a mesh beyond them is
+    /// skipped or reduced, with a notice).
+    ///
+    /// # Errors
+    /// As [`Visuals::from_urdf`].
+    pub fn from_urdf_with(
+        urdf: &Urdf,
+        base: &str,
+        joints: &[&str],
+        dir: Option<&Path>,
+        limits: &Limits,
+    ) -> anyhow::Result<(Visuals, Vec<String>)> {
         let named = materials(urdf)?;
         let tree = urdf.tree();
         // Equal geometries share one shape (a mesh is loaded once); the key is the
@@ -221,8 +202,13 @@ impl Visuals {
                 let key = format!("{g:?}");
                 let shape = match shapes.get(&key) {
                     Some(s) => s.clone(),
-                    None => match shape(g, dir) {
-                        Ok(s) => shapes.entry(key).or_insert(Arc::new(s)).clone(),
+                    None => match shape(g, dir, limits) {
+                        Ok((s, reduced)) => {
+                            if let Some(why) = reduced {
+                                notices.push(format!("link '{name}': {why}"));
+                            }
+                            shapes.entry(key).or_insert(Arc::new(s)).clone()
+                        }
                         Err(why) => {
                             notices.push(format!("link '{name}': {why}, skipped"));
                             continue;

@@ -261,3 +261,64 @@ fn primitives_and_meshes_are_drawn_and_missing_meshes_noted() {
         assert!(n >= min, "{name}: {n} pixels");
     }
 }
+
+/// Mesh files that are not regular files, an OBJ naming `/dev/zero` as its material
+/// library and a mesh that overflows when scaled: each is skipped (or read without its
+/// materials) with a notice naming it, and the picture is written.
+#[test]
+fn hostile_mesh_files_are_skipped_by_name() {
+    let dir = tmp("hostile-meshes");
+    std::fs::create_dir_all(dir.join("meshes")).unwrap();
+    std::fs::write(dir.join("meshes/tetra.stl"), tetrahedron_stl()).unwrap();
+    let obj = "mtllib /dev/zero\nv 0 0 0\nv 0.2 0 0\nv 0 0.2 0\nv 0 0 0.2\n\
+               f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+    std::fs::write(dir.join("meshes/tetra.obj"), obj).unwrap();
+    let big = obj.replace("v 0.2 0 0", "v 1e30 0 0");
+    std::fs::write(dir.join("meshes/big.obj"), big).unwrap();
+    let fifo = dir.join("meshes/fifo.stl");
+    assert!(Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success());
+    std::os::unix::fs::symlink("/dev/zero", dir.join("meshes/zero.stl")).unwrap();
+    let urdf = VISUAL_URDF.replace(
+        r#"<geometry><mesh filename="meshes/missing.stl"/>"#,
+        r#"<geometry><mesh filename="meshes/fifo.stl"/></geometry></visual>
+    <visual><geometry><mesh filename="meshes/zero.stl"/></geometry></visual>
+    <visual><geometry><mesh filename="meshes/big.obj" scale="1e300 1 1"/></geometry></visual>
+    <visual><geometry><mesh filename="meshes/tetra.obj"/>"#,
+    );
+    let path = dir.join("shapes.urdf");
+    std::fs::write(&path, urdf).unwrap();
+    let input = dir.join("cases.json");
+    std::fs::write(&input, zero_cases(1, 1)).unwrap();
+    let out = run(&[
+        "render",
+        "--urdf",
+        path.to_str().unwrap(),
+        "--base",
+        "base",
+        "--tip",
+        "tool",
+        "--input",
+        input.to_str().unwrap(),
+        "--format",
+        "png",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    for (name, why) in [
+        ("fifo.stl", "not a regular file"),
+        ("zero.stl", "not a regular file"),
+        ("big.obj", "not finite after scaling"),
+    ] {
+        assert!(
+            stderr.lines().any(|l| l.contains(name) && l.contains(why)),
+            "{name}: {why}: {stderr}"
+        );
+    }
+    assert!(!stderr.contains("tetra.obj"), "{stderr}");
+    assert!(dir.join("ppoe-render-0.png").is_file());
+}
