@@ -2,10 +2,11 @@
 //! frames along the chain, the equiprobable surface of the tool position and the
 //! second-order mean, as a [`picture::Frame`].
 
+use crate::args::{SurfaceArg, SurfaceArgs};
 use crate::output::println;
 use crate::picture::{self, Frame};
+use crate::seed;
 use crate::visuals::Visuals;
-use crate::{seed, SurfaceArg, SurfaceArgs};
 use anyhow::{bail, Context};
 use ppoe::chain::{ChainView, Convention};
 use ppoe::surface::{self, Surface};
@@ -283,7 +284,7 @@ pub fn demo(
     let (k, label) = level(surface)?;
     let chain = seed::SEED.as_ref();
     let covs = match noise {
-        Some(p) => crate::fit::seed_noise(p)?,
+        Some(p) => crate::noise::seed_covs(p)?,
         None => seed::covs(),
     };
     let grid = surface.grid as usize;
