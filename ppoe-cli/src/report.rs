@@ -8,9 +8,11 @@ pub const EXIT_CODES: &str = "Exit status: 0 on success (also when the reader of
 closes it early, as `ppoe eval ... | head` does); 1 when an input is unreadable or wrong, a \
 computation fails or a file cannot be written (one line on standard error, `error: ...`); 2 \
 for a usage error (unknown subcommand or flag, missing or out-of-range value). FILE \
-arguments (--urdf, --input) accept `-` for standard input and pipes such as `<(xacro \
-robot.urdf.xacro)`; each input is read once. Output files are written to a temporary file \
-and renamed, so an interrupted run never leaves a partial file under the final name.";
+arguments (--urdf, --input, --noise) accept `-` for standard input (one of them at most) \
+and pipes such as `<(xacro robot.urdf.xacro)`; each input is read once. Output files are \
+written to a temporary file and renamed, so an interrupted run never leaves a partial file \
+under the final name; a device or FIFO (`--out /dev/stdout`) is written through, and a \
+symbolic link is kept (the file it points to is replaced).";
 
 /// The exit statuses, in short, for each subcommand's `--help`.
 pub const EXIT_CODES_SHORT: &str = "Exit status: 0 success; 1 bad input, failed computation or \

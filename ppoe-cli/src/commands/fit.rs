@@ -26,7 +26,8 @@ pub struct FitArgs {
     /// The noise model to fit.
     #[arg(long, value_enum)]
     model: FitModel,
-    /// Write the result to FILE (atomically) instead of standard output.
+    /// Write the result to FILE instead of standard output (atomically; a device or a FIFO
+    /// such as /dev/stdout is written through).
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
 }
@@ -38,12 +39,10 @@ pub fn run(a: &FitArgs) -> anyhow::Result<()> {
         load::cases_input(a.input.as_deref()),
     ])?;
     if let Some(out) = &a.out {
-        let dir = out.parent().filter(|d| !d.as_os_str().is_empty());
-        let name = out.file_name().map(|n| n.to_string_lossy().into_owned());
-        let Some(name) = name else {
+        if out.file_name().is_none() {
             anyhow::bail!("--out {} has no file name", out.display());
-        };
-        output::check_targets(dir.unwrap_or(Path::new(".")), &[name])?;
+        }
+        output::check_file(out)?;
     }
     let robot = load::robot(&a.chain)?;
     let input = load::read(a.input.as_deref().unwrap_or(Path::new("-")), "input file")?;
