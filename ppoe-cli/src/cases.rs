@@ -1,135 +1,134 @@
-//! `render` and `mesh`: one frame per case of the input, each computed, written and dropped
-//! in turn (so memory does not grow with the number of cases), after the inputs were read
-//! once and the output files checked. A GIF or an HTML view of all cases makes each frame
-//! twice: once to fit the shared view, once to stream it out (see [`picture::Survey`]).
+//! The cases of `eval`, `render` and `mesh`,
+//! `{"cases":[{"thetas":[N numbers],"covs":[N 6×6 row-major]}]}`: read once (a file,
+//! `-` or a pipe), decoded once ([`input::text`]) and parsed once into typed cases. With a
+//! noise model (`--noise`) the cases give joint values only and each gets the model's
+//! covariances; the JSON is not edited and parsed again.
 
-use crate::draw::{self, level};
-use crate::names::shown;
-use crate::picture::{self, Frame};
-use crate::{eval, load, output, ChainArgs, SurfaceArgs};
-use anyhow::{bail, Context};
-use ppoe::chain::{ChainView, Convention};
-use ppoe::Mat6;
+use crate::{input, load, noise};
+use anyhow::{anyhow, bail};
+use ppoe_build::RobotChain;
+use serde::de::{DeserializeOwned, IgnoredAny};
+use serde::{Deserialize, Deserializer};
 use std::path::Path;
 
-/// What to do with each frame.
-pub enum Sink<'a> {
-    /// Write frame `i` to `dir/name(i)` with `write`, atomically.
-    Each {
-        /// The output directory.
-        dir: &'a Path,
-        /// The file name of frame `i`.
-        name: &'a dyn Fn(usize) -> String,
-        /// The writer; it writes atomically (see [`output`]).
-        write: &'a dyn Fn(&Path, &Frame) -> anyhow::Result<()>,
-    },
-    /// One animation of every frame at `dir/name`, streamed (see [`picture::Survey`]).
-    Gif {
-        /// The output directory.
-        dir: &'a Path,
-        /// The file name.
-        name: &'a str,
-    },
-    /// One interactive HTML view of every frame at `dir/name`, streamed.
-    Html {
-        /// The output directory.
-        dir: &'a Path,
-        /// The file name.
-        name: &'a str,
-    },
+/// The input: `{"cases":[{"thetas":[N numbers],"covs":[N 6×6 row-major]}]}`. Unknown
+/// fields (e.g. a case `label`) are ignored.
+#[derive(Deserialize, Debug, Clone)]
+pub struct Input {
+    /// The cases, evaluated in order.
+    pub cases: Vec<Case>,
 }
 
-/// Reads the URDF and the cases once and checks them and the outputs, all before any
-/// computation.
-fn prepare(
-    chain_args: &ChainArgs,
-    input: Option<&Path>,
-    noise: Option<&Path>,
-    sink: &Sink<'_>,
-) -> anyhow::Result<(load::Robot, eval::Input)> {
-    load::check_one_stdin(&chain_args.urdf, input)?;
-    let robot = load::robot(chain_args)?;
-    let cases = crate::fit::cases(input, noise, &robot.chain)?;
-    if cases.cases.is_empty() {
-        bail!("the input has no cases");
-    }
-    eval::check_counts(&robot.chain, &cases)?;
-    let n = cases.cases.len();
-    match sink {
-        Sink::Each { dir, name, .. } => {
-            output::check_targets(dir, &(0..n).map(name).collect::<Vec<_>>())?
-        }
-        Sink::Gif { dir, name } | Sink::Html { dir, name } => {
-            output::check_targets(dir, &[name.to_string()])?
-        }
-    }
-    Ok((robot, cases))
+/// One case: joint values and per-joint 6×6 covariances (rotation first, base-frame
+/// screw coordinates).
+#[derive(Deserialize, Debug, Clone)]
+pub struct Case {
+    /// One value per joint (radians or metres).
+    pub thetas: Vec<f64>,
+    /// One 6×6 covariance per joint, row-major.
+    pub covs: Vec<[[f64; 6]; 6]>,
 }
 
-/// Reads the URDF and the cases once, checks the outputs, then computes and writes each
-/// case's frame; prints `wrote <path>` for each file.
+/// The input when a noise model gives the covariances (messages name it as [`Input`]).
+#[derive(Deserialize)]
+#[serde(expecting = "struct Input")]
+struct ThetasInput {
+    cases: Vec<ThetasCase>,
+}
+
+/// A case when a noise model gives the covariances (messages name it as [`Case`]).
+#[derive(Deserialize)]
+#[serde(expecting = "struct Case")]
+struct ThetasCase {
+    thetas: Vec<f64>,
+    /// Whether the case gives "covs" (any value, `null` too): then the covariances
+    /// would come two ways.
+    #[serde(default, deserialize_with = "given")]
+    covs: bool,
+}
+
+/// `true` for any value that is there.
+fn given<'de, D: Deserializer<'de>>(d: D) -> Result<bool, D::Error> {
+    IgnoredAny::deserialize(d).map(|_| true)
+}
+
+/// The input's shape, named in messages about a wrong one.
+const SHAPE: &str = "(expected {\"cases\":[{\"thetas\":[N numbers],\"covs\":[N 6×6 arrays]}]})";
+
+/// Parses `text` as `T`; a wrong shape names the expected one (`with_syntax`: a JSON
+/// syntax error too).
+fn parse<T: DeserializeOwned>(text: &str, with_syntax: bool) -> anyhow::Result<T> {
+    input::parse_json(text).map_err(|e| {
+        if input::is_shape_error(&e) || with_syntax {
+            anyhow!("{e} {SHAPE}")
+        } else {
+            e
+        }
+    })
+}
+
+/// Reads, decodes and parses the cases once from `path` (`None` or `-`: standard input);
+/// with a noise model (`--noise`, read first), every case gets its covariances, and a
+/// case that gives its own is an error (one source of covariances).
 ///
 /// # Errors
-/// Input errors (naming the file, case and joint), unwritable outputs (before any
-/// computation), and failures of a case (naming it).
-pub fn run(
-    chain_args: &ChainArgs,
-    input: Option<&Path>,
+/// Unreadable or malformed input or noise model, naming it; a case with its own covs.
+pub fn load(
+    path: Option<&Path>,
     noise: Option<&Path>,
-    surface: &SurfaceArgs,
-    sink: &Sink<'_>,
-) -> anyhow::Result<()> {
-    let (k, label) = level(surface)?;
-    let grid = surface.grid as usize;
-    let (robot, cases) = prepare(chain_args, input, noise, sink)?;
-    let home_frames = robot.chain.home_frames();
-    let visuals = draw::robot_visuals(&robot, &chain_args.urdf)?;
-    let (joints, home) = eval::core_joints::<f64>(&robot.chain);
-    let chain = ChainView {
-        joints: &joints,
-        home,
+    robot: &RobotChain,
+) -> anyhow::Result<Input> {
+    let covs = noise.map(|p| noise::covs_for(p, robot)).transpose()?;
+    let input = load::read(path.unwrap_or(Path::new("-")), "input file")?;
+    let malformed = |e: anyhow::Error| anyhow!("{}: malformed input JSON: {e:#}", input.name);
+    let text = input::text(&input.bytes).map_err(|e| {
+        malformed(anyhow!(
+            "the input is not UTF-8 (invalid byte at offset {})",
+            e.valid_up_to()
+        ))
+    })?;
+    let Some(covs) = covs else {
+        return parse::<Input>(text, true).map_err(malformed);
     };
-    let (base, tip) = (shown(&robot.chain.base), shown(&robot.chain.tip));
-    let n = cases.cases.len();
-    let make = |i: usize| -> anyhow::Result<Frame> {
-        let case = &cases.cases[i];
-        // Same checks and messages as `eval`.
-        eval::eval_case(&chain, i, case, Convention::Right)?;
-        let covs: Vec<Mat6<f64>> = case.covs.iter().map(|c| Mat6::from(*c)).collect();
-        let title = format!("{base} → {tip}: case {}/{n}", i + 1);
-        let s = draw::state(
-            title,
-            &chain,
-            &home_frames,
-            &case.thetas,
-            &covs,
-            surface.surface,
-            k,
-            grid,
-            &label,
-            &visuals,
-        );
-        Ok(s.with_context(|| format!("case {i}"))?.frame)
-    };
-    let (p, gif) = match sink {
-        Sink::Each { dir, name, write } => {
-            for i in 0..n {
-                let p = dir.join(name(i));
-                write(&p, &make(i)?)?;
-                output::print(format!("wrote {}\n", p.display()).as_bytes())?;
-            }
-            return Ok(());
+    let given: ThetasInput = parse(text, false).map_err(malformed)?;
+    let mut cases = Vec::with_capacity(given.cases.len());
+    for (i, c) in given.cases.into_iter().enumerate() {
+        if c.covs {
+            bail!("case {i} gives \"covs\" and --noise is set: give the covariances one way");
         }
-        Sink::Gif { dir, name } => (dir.join(name), true),
-        Sink::Html { dir, name } => (dir.join(name), false),
-    };
-    let frames = picture::Frames { n, make: &make };
-    let survey = picture::Survey::of(&frames)?;
-    if gif {
-        draw::write_gif(&p, &frames, &survey)?;
-    } else {
-        picture::write_html(&p, &frames, &survey)?;
+        cases.push(Case {
+            thetas: c.thetas,
+            covs: covs.clone(),
+        });
     }
-    output::print(format!("wrote {}\n", p.display()).as_bytes())?;
+    Ok(Input { cases })
+}
+
+/// Checks the joint counts of every case against the chain.
+///
+/// # Errors
+/// The first case with another number of joint values or covariances, naming the chain.
+pub fn check_counts(robot: &RobotChain, input: &Input) -> anyhow::Result<()> {
+    let n = robot.joints.len();
+    for (i, c) in input.cases.iter().enumerate() {
+        if c.thetas.len() != n {
+            bail!(
+                "case {i}: {} joint values given, the chain from '{}' to '{}' has {n} joints ({})",
+                c.thetas.len(),
+                robot.base,
+                robot.tip,
+                robot.joint_names().join(", ")
+            );
+        }
+        if c.covs.len() != n {
+            bail!(
+                "case {i}: {} covariances given, the chain from '{}' to '{}' has {n} joints ({})",
+                c.covs.len(),
+                robot.base,
+                robot.tip,
+                robot.joint_names().join(", ")
+            );
+        }
+    }
     Ok(())
 }

@@ -2,10 +2,11 @@
 //! frames along the chain, the equiprobable surface of the tool position and the
 //! second-order mean, as a [`picture::Frame`].
 
+use crate::args::{SurfaceArg, SurfaceArgs};
 use crate::output::println;
 use crate::picture::{self, Frame};
+use crate::seed;
 use crate::visuals::Visuals;
-use crate::{seed, SurfaceArg, SurfaceArgs};
 use anyhow::{bail, Context};
 use ppoe::chain::{ChainView, Convention};
 use ppoe::surface::{self, Surface};
@@ -136,22 +137,32 @@ pub fn ensure_dir(dir: &Path) -> anyhow::Result<()> {
 }
 
 /// The URDF visuals of `robot` (from the URDF already parsed), meshes looked up beside
-/// `urdf_path` when the URDF is a regular file; what is skipped is noted on stderr.
+/// `urdf_path` when the URDF is a regular file, at most `surface.mesh_triangles` triangles
+/// per mesh; what is skipped or reduced is noted on stderr.
 ///
 /// # Errors
 /// A `<visual>` element is malformed.
-pub fn robot_visuals(robot: &crate::load::Robot, urdf_path: &Path) -> anyhow::Result<Visuals> {
+pub fn robot_visuals(
+    robot: &crate::load::Robot,
+    urdf_path: &Path,
+    surface: &SurfaceArgs,
+) -> anyhow::Result<Visuals> {
     let name = &robot.source.name;
     let mesh_dir = if robot.source.regular {
         urdf_path.parent()
     } else {
         None
     };
-    let (visuals, notices) = Visuals::from_urdf(
+    let limits = crate::meshfile::Limits {
+        max_triangles: surface.mesh_triangles,
+        ..Default::default()
+    };
+    let (visuals, notices) = Visuals::from_urdf_with(
         &robot.urdf,
         &robot.chain.base,
         &robot.chain.joint_names(),
         mesh_dir,
+        &limits,
     )
     .with_context(|| name.clone())?;
     for n in notices {
@@ -283,7 +294,7 @@ pub fn demo(
     let (k, label) = level(surface)?;
     let chain = seed::SEED.as_ref();
     let covs = match noise {
-        Some(p) => crate::fit::seed_noise(p)?,
+        Some(p) => crate::noise::seed_covs(p)?,
         None => seed::covs(),
     };
     let grid = surface.grid as usize;

@@ -1,30 +1,13 @@
 //! `ppoe eval`: the PPOE for the cases of a JSON file, through the runtime path a host
 //! tool gets (`ChainView` over the joints `ppoe-build` computes, `ppoe_checked`).
 
-use crate::EvalScalar;
+use crate::args::EvalScalar;
+use crate::cases::{check_counts, Case, Input};
 use anyhow::bail;
 use ppoe::chain::{ChainView, Convention, Joint};
 use ppoe::{Mat6, Real, Transform};
 use ppoe_build::RobotChain;
-use serde::{Deserialize, Serialize};
-
-/// The input: `{"cases":[{"thetas":[N numbers],"covs":[N 6×6 row-major]}]}`. Unknown
-/// fields (e.g. a case `label`) are ignored.
-#[derive(Deserialize, Debug, Clone)]
-pub struct Input {
-    /// The cases, evaluated in order.
-    pub cases: Vec<Case>,
-}
-
-/// One case: joint values and per-joint 6×6 covariances (rotation first, base-frame
-/// screw coordinates).
-#[derive(Deserialize, Debug, Clone)]
-pub struct Case {
-    /// One value per joint (radians or metres).
-    pub thetas: Vec<f64>,
-    /// One 6×6 covariance per joint, row-major.
-    pub covs: Vec<[[f64; 6]; 6]>,
-}
+use serde::Serialize;
 
 /// The output of `ppoe eval`.
 #[derive(Serialize, Debug)]
@@ -61,53 +44,6 @@ pub struct CaseOut {
     pub pose: [[f64; 4]; 4],
     /// The 6×6 covariance in the requested convention.
     pub cov: [[f64; 6]; 6],
-}
-
-/// Parses the input JSON from bytes: UTF-8, with or without a byte-order mark (as the
-/// URDF reader accepts).
-///
-/// # Errors
-/// Not UTF-8, or not JSON of the input's shape (the expected shape is named).
-pub fn parse_input_bytes(bytes: &[u8]) -> anyhow::Result<Input> {
-    let bytes = bytes.strip_prefix("\u{feff}".as_bytes()).unwrap_or(bytes);
-    let text = std::str::from_utf8(bytes).map_err(|e| {
-        anyhow::anyhow!(
-            "the input is not UTF-8 (invalid byte at offset {})",
-            e.valid_up_to()
-        )
-    })?;
-    let input: Input = serde_json::from_str(text).map_err(|e| {
-        anyhow::anyhow!(
-            "{e} (expected {{\"cases\":[{{\"thetas\":[N numbers],\"covs\":[N 6×6 arrays]}}]}})"
-        )
-    })?;
-    Ok(input)
-}
-
-/// Checks the joint counts of every case against the chain.
-pub fn check_counts(robot: &RobotChain, input: &Input) -> anyhow::Result<()> {
-    let n = robot.joints.len();
-    for (i, c) in input.cases.iter().enumerate() {
-        if c.thetas.len() != n {
-            bail!(
-                "case {i}: {} joint values given, the chain from '{}' to '{}' has {n} joints ({})",
-                c.thetas.len(),
-                robot.base,
-                robot.tip,
-                robot.joint_names().join(", ")
-            );
-        }
-        if c.covs.len() != n {
-            bail!(
-                "case {i}: {} covariances given, the chain from '{}' to '{}' has {n} joints ({})",
-                c.covs.len(),
-                robot.base,
-                robot.tip,
-                robot.joint_names().join(", ")
-            );
-        }
-    }
-    Ok(())
 }
 
 /// The chain part of the output.
@@ -153,6 +89,9 @@ pub fn core_joints<T: Real>(robot: &RobotChain) -> (Vec<Joint<T>>, Transform<T>)
 
 /// The mean pose and covariance of one case (already count-checked), in scalar T, with
 /// the clipped joint values; errors name the case and the joint.
+///
+/// The covariances are checked once, by [`ChainView::ppoe_checked`]; only when it fails
+/// are they looked at again, to name the joint ([`named_covariance_error`]).
 pub fn eval_case<T: Real>(
     chain: &ChainView<'_, T>,
     index: usize,
@@ -178,15 +117,12 @@ pub fn eval_case<T: Real>(
         .iter()
         .map(|c| Mat6::from(c.map(|r| r.map(T::lit))))
         .collect();
-    for (j, c) in covs.iter().enumerate() {
-        ppoe::uncertainty::check_covariance(c).map_err(|e| {
-            let name = chain.joints.get(j).map(|jt| jt.name).unwrap_or("?");
-            anyhow::anyhow!("case {index}, joint {j} ('{name}'): {e}")
-        })?;
-    }
     let tip = chain
         .ppoe_checked(&thetas, &covs, convention)
-        .map_err(|e| anyhow::anyhow!("case {index}: {e}"))?;
+        .map_err(|e| {
+            named_covariance_error(chain, index, &covs)
+                .unwrap_or_else(|| anyhow::anyhow!("case {index}: {e}"))
+        })?;
     let mut clipped = vec![T::ZERO; thetas.len()];
     chain
         .clip(
@@ -196,6 +132,21 @@ pub fn eval_case<T: Real>(
         )
         .map_err(|e| anyhow::anyhow!("case {index}: {e}"))?;
     Ok((clipped, tip.pose, tip.cov))
+}
+
+/// The first covariance of case `index` that is not valid, as an error naming the case
+/// and the joint; `None` if all are valid. For the error path of a PPOE that failed: a
+/// bad covariance is reported with its joint, before any other failure.
+pub fn named_covariance_error<T: Real>(
+    chain: &ChainView<'_, T>,
+    index: usize,
+    covs: &[Mat6<T>],
+) -> Option<anyhow::Error> {
+    covs.iter().enumerate().find_map(|(j, c)| {
+        let e = ppoe::uncertainty::check_covariance(c).err()?;
+        let name = chain.joints.get(j).map(|jt| jt.name).unwrap_or("?");
+        Some(anyhow::anyhow!("case {index}, joint {j} ('{name}'): {e}"))
+    })
 }
 
 fn eval_cases<T: Real>(

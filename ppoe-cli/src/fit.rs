@@ -1,14 +1,12 @@
 //! `ppoe fit`: per-joint noise covariances fitted by maximum likelihood (`ppoe-fit`) from
-//! joint values recorded with tool poses measured by a tracker; and `--noise FILE`, the
-//! fit's output read back by `eval`, `render`, `mesh` and `demo`.
+//! joint values recorded with tool poses measured by a tracker (its output is read back
+//! by `--noise FILE`, [`crate::noise`]).
 
 use anyhow::{bail, Context};
-use ppoe_build::noise::NoiseModel;
 use ppoe_build::RobotChain;
 use ppoe_fit::{Fit, Model, Sample};
 use serde_json::{json, Value};
 use std::io::Write;
-use std::path::Path;
 use std::time::Instant;
 
 /// The parsed input: the samples and the tracker's noise.
@@ -17,7 +15,7 @@ type FitInput = (Vec<Sample>, Option<[[f64; 6]; 6]>);
 /// Parses the input `{"samples":[{"thetas":[N],"pose":[[4×4]]}],"measurement_cov":6×6}`;
 /// errors name the sample.
 pub fn parse_input(text: &str) -> anyhow::Result<FitInput> {
-    let v: Value = serde_json::from_str(text).context(concat!(
+    let v: Value = crate::input::parse_json(text).context(concat!(
         "malformed input JSON (expected {\"samples\":[{\"thetas\":[N numbers],",
         "\"pose\":[[4×4]]}], \"measurement_cov\": optional 6×6})"
     ))?;
@@ -218,68 +216,4 @@ fn quality_lines(e: &mut impl Write, f: &Fit) {
         100.0 * p.worst,
         ppoe_fit::samples_for(f.samples, p.median, 0.05)
     );
-}
-
-/// The noise model of `--noise FILE`, checked against the chain.
-pub fn read_noise(path: &Path, robot: &RobotChain) -> anyhow::Result<Vec<[[f64; 6]; 6]>> {
-    let model = NoiseModel::read(path)?;
-    model
-        .check_against(robot)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    Ok(model.joints.iter().map(|j| j.cov).collect())
-}
-
-/// The cases of `eval`/`render`/`mesh`, read once from `path` (`None` or `-`: standard
-/// input); with a noise model (`--noise`), every case gets its covariances, and a case
-/// that gives its own is an error (one source of covariances).
-///
-/// # Errors
-/// Unreadable or malformed input or noise model, naming it; a case with its own covs.
-pub fn cases(
-    path: Option<&Path>,
-    noise: Option<&Path>,
-    robot: &RobotChain,
-) -> anyhow::Result<crate::eval::Input> {
-    let Some(noise) = noise else {
-        return crate::load::cases(path);
-    };
-    let covs = read_noise(noise, robot)?;
-    let input = crate::load::read(path.unwrap_or(Path::new("-")), "input file")?;
-    let bytes = input
-        .bytes
-        .strip_prefix("\u{feff}".as_bytes())
-        .unwrap_or(&input.bytes);
-    let mut v: Value = serde_json::from_slice(bytes)
-        .with_context(|| format!("{}: malformed input JSON", input.name))?;
-    if let Some(cases) = v.get_mut("cases").and_then(Value::as_array_mut) {
-        for (i, c) in cases.iter_mut().enumerate() {
-            let Some(obj) = c.as_object_mut() else {
-                continue; // the typed parse reports it
-            };
-            if obj.contains_key("covs") {
-                bail!("case {i} gives \"covs\" and --noise is set: give the covariances one way");
-            }
-            obj.insert("covs".into(), json!(covs));
-        }
-    }
-    crate::eval::parse_input_bytes(v.to_string().as_bytes())
-        .map_err(|e| anyhow::anyhow!("{}: malformed input JSON: {e:#}", input.name))
-}
-
-/// The seed robot's covariances from a noise model (`demo --noise`), checked against the
-/// seed table's joint names.
-pub fn seed_noise(path: &Path) -> anyhow::Result<[ppoe::Mat6<f64>; 6]> {
-    let model = NoiseModel::read(path)?;
-    let names: Vec<&str> = crate::seed::SEED.joints.iter().map(|j| j.name).collect();
-    let mine: Vec<&str> = model.joints.iter().map(|j| j.name.as_str()).collect();
-    if names != mine {
-        bail!(
-            "{}: the noise model's joints [{}] are not the seed robot's [{}]",
-            path.display(),
-            mine.join(", "),
-            names.join(", ")
-        );
-    }
-    let covs = model.covs();
-    Ok(std::array::from_fn(|i| covs[i]))
 }

@@ -1,10 +1,10 @@
-//! Reading the command's inputs, each exactly once: the URDF and the JSON cases, from a
-//! path, `-` for standard input, or a pipe (`--urdf <(xacro robot.urdf.xacro)`), which can
-//! be read only once.
+//! Reading the command's inputs, each exactly once: the URDF, the JSON cases and the noise
+//! model, from a path, `-` for standard input (one input at most), or a pipe (`--urdf
+//! <(xacro robot.urdf.xacro)`), which can be read only once.
 
+use crate::args::ChainArgs;
 use crate::names::{self, shown};
 use crate::output::io_sentence;
-use crate::ChainArgs;
 use anyhow::bail;
 use ppoe_build::{RobotChain, Urdf};
 use std::io::Read;
@@ -76,15 +76,59 @@ pub fn read(path: &Path, what: &str) -> anyhow::Result<Input> {
     })
 }
 
-/// Refuses two inputs from standard input (`--urdf -` with the cases on standard input).
+/// One input of a command line that may come from standard input, for
+/// [`check_one_stdin`].
+pub struct StdinUse {
+    /// What messages call it ("the URDF").
+    what: &'static str,
+    /// Its flag ("--urdf").
+    flag: &'static str,
+    /// Whether it reads standard input.
+    stdin: bool,
+}
+
+/// `--urdf FILE`.
+pub fn urdf_input(path: &Path) -> StdinUse {
+    StdinUse {
+        what: "the URDF",
+        flag: "--urdf",
+        stdin: is_stdin(path),
+    }
+}
+
+/// `--input FILE` of the cases (`None`: standard input).
+pub fn cases_input(path: Option<&Path>) -> StdinUse {
+    StdinUse {
+        what: "the input cases",
+        flag: "--input",
+        stdin: path.is_none_or(is_stdin),
+    }
+}
+
+/// `--noise FILE` (`None`: no noise model).
+pub fn noise_input(path: Option<&Path>) -> StdinUse {
+    StdinUse {
+        what: "the noise model",
+        flag: "--noise",
+        stdin: path.is_some_and(is_stdin),
+    }
+}
+
+/// Refuses two inputs from standard input (`--urdf -` with the cases on standard input),
+/// before anything is read: standard input can be read only once.
 ///
 /// # Errors
-/// When both `urdf` and `cases` (`None`: standard input) read standard input.
-pub fn check_one_stdin(urdf: &Path, cases: Option<&Path>) -> anyhow::Result<()> {
-    if is_stdin(urdf) && cases.is_none_or(is_stdin) {
+/// When two of `inputs` read standard input, naming both.
+pub fn check_one_stdin(inputs: &[StdinUse]) -> anyhow::Result<()> {
+    let on_stdin: Vec<&StdinUse> = inputs.iter().filter(|i| i.stdin).collect();
+    if let [a, b, ..] = on_stdin[..] {
         bail!(
-            "the URDF and the input cases cannot both come from standard input: give one of \
-             them as a file (--urdf FILE or --input FILE)"
+            "{} and {} cannot both come from standard input: give one of them as a file \
+             ({} FILE or {} FILE)",
+            a.what,
+            b.what,
+            a.flag,
+            b.flag
         );
     }
     Ok(())
@@ -163,14 +207,4 @@ pub fn robot(args: &ChainArgs) -> anyhow::Result<Robot> {
         urdf,
         chain,
     })
-}
-
-/// Reads and parses the JSON cases once from `path` (`None` or `-`: standard input).
-///
-/// # Errors
-/// Unreadable or malformed input, naming it.
-pub fn cases(path: Option<&Path>) -> anyhow::Result<crate::eval::Input> {
-    let input = read(path.unwrap_or(Path::new("-")), "input file")?;
-    crate::eval::parse_input_bytes(&input.bytes)
-        .map_err(|e| anyhow::anyhow!("{}: malformed input JSON: {e:#}", input.name))
 }

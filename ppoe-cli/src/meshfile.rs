@@ -333,7 +333,8 @@ fn reduce(mesh: &mut Mesh, max: usize) {
             let cell = 2.0 * half_extent / cells as f64;
             mesh.reduced = Some(format!(
                 "{before} triangles reduced to {} by vertex clustering (grid cell {cell:.3e}, \
-                 the shape's error at most {:.3e}); the bound is {max} per mesh",
+                 the shape's error at most {:.3e}); the bound is {max} per mesh \
+                 (--mesh-triangles)",
                 t.len(),
                 cell * 3f64.sqrt()
             ));

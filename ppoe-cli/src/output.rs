@@ -1,11 +1,18 @@
-//! Every byte the command writes goes through here: files are written atomically (a
-//! temporary file in the same directory, renamed over the final name once complete), and
-//! standard output tolerates a reader that went away.
+//! Every byte the command writes goes through here: files are written atomically where the
+//! path allows it (a temporary file in the same directory, renamed over the final name
+//! once complete), written through where it does not, and standard output tolerates a
+//! reader that went away.
 //!
 //! Atomic: an interrupted run (Ctrl-C, a full disk, an error half-way through a GIF) never
 //! leaves a truncated file under the final name, and the previous good file stays until
 //! the new one is complete. A killed run may leave its hidden temporary file
 //! (`.ppoe-tmp-<pid>-<n>-<name>`) behind; nothing else reads it.
+//!
+//! What the path is decides how ([`Target`]): a new path or a regular file is replaced
+//! atomically; a symbolic link to a regular file (or to nothing yet) keeps the link, and
+//! the file it points to is replaced atomically; anything else that exists — a device such
+//! as `/dev/null`, a FIFO, `/dev/stdout` — is opened and written through, never renamed
+//! over (renaming a temporary file over `/dev/null` would replace the system's device).
 //!
 //! Standard output: when the reader closes the pipe (`ppoe demo | head`), further output
 //! is dropped silently and the command carries on (the files it writes are its product);
@@ -100,24 +107,102 @@ fn temp_path(path: &Path) -> anyhow::Result<PathBuf> {
     Ok(path.with_file_name(temp))
 }
 
-/// Calls `write(temp)` to fill a temporary file next to `path`, then renames it to `path`.
-/// For writers that take a path (the picture encoders).
+/// How a file at a path is written.
+#[derive(Debug, PartialEq, Eq)]
+enum Target {
+    /// Atomically: a temporary file next to this path (the path given, or the file a
+    /// symbolic link points to), renamed over it.
+    Replace(PathBuf),
+    /// Through the path as given: it exists and is not a regular file (a device, a FIFO, a
+    /// socket, or a link to one), so it is opened for writing, neither created nor
+    /// truncated nor replaced.
+    Through,
+}
+
+/// A symbolic link's own target, relative targets taken from the link's directory.
+fn link_target(link: &Path) -> io::Result<PathBuf> {
+    let t = std::fs::read_link(link)?;
+    Ok(match link.parent() {
+        Some(dir) if t.is_relative() => dir.join(t),
+        _ => t,
+    })
+}
+
+/// The path a chain of symbolic links that ends in nothing (yet) points to: the file to
+/// create there, atomically.
+fn dangling_target(path: &Path) -> anyhow::Result<PathBuf> {
+    let sentence =
+        |e: io::Error| anyhow::anyhow!("cannot write {}: {}", path.display(), io_sentence(&e));
+    let mut p = path.to_path_buf();
+    // As many links as Linux follows.
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&p) {
+            Ok(m) if m.file_type().is_symlink() => p = link_target(&p).map_err(sentence)?,
+            Ok(_) => bail!(
+                "cannot write {}: it changed while being looked at",
+                path.display()
+            ),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(p),
+            Err(e) => return Err(sentence(e)),
+        }
+    }
+    bail!(
+        "cannot write {}: too many levels of symbolic links",
+        path.display()
+    )
+}
+
+/// How `path` is written (see [`Target`]).
 ///
 /// # Errors
-/// The writer's error, or a failure to rename, each naming `path`; the temporary file is
-/// removed and `path` is left as it was.
-pub fn write_atomic_path(
-    path: &Path,
+/// `path` is a directory (or a link to one), or cannot be looked at.
+fn target(path: &Path) -> anyhow::Result<Target> {
+    let sentence =
+        |e: io::Error| anyhow::anyhow!("cannot write {}: {}", path.display(), io_sentence(&e));
+    // Followed by the kernel first: `/dev/stdout` → `/proc/self/fd/1` → `pipe:[…]` is a
+    // link only the kernel can follow.
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_dir() => bail!("cannot write {}: it is a directory", path.display()),
+        Ok(m) if !m.is_file() => Ok(Target::Through),
+        Ok(_)
+            if std::fs::symlink_metadata(path)
+                .map_err(sentence)?
+                .is_symlink() =>
+        {
+            std::fs::canonicalize(path)
+                .map(Target::Replace)
+                .map_err(sentence)
+        }
+        Ok(_) => Ok(Target::Replace(path.to_path_buf())),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => match std::fs::symlink_metadata(path) {
+            Ok(_) => dangling_target(path).map(Target::Replace),
+            Err(_) => Ok(Target::Replace(path.to_path_buf())),
+        },
+        Err(e) => Err(sentence(e)),
+    }
+}
+
+/// Opens `path` (a [`Target::Through`]) for writing as it is.
+fn open_through(path: &Path) -> io::Result<std::fs::File> {
+    std::fs::OpenOptions::new().write(true).open(path)
+}
+
+/// Calls `write(temp)` to fill a temporary file next to `real`, then renames it to
+/// `real`; errors name `shown`, the path as given.
+fn replace(
+    real: &Path,
+    shown: &Path,
     write: impl FnOnce(&Path) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
-    let temp = temp_path(path)?;
+    let sentence =
+        |e: io::Error| anyhow::anyhow!("cannot write {}: {}", shown.display(), io_sentence(&e));
+    let temp = temp_path(real)?;
     let result = write(&temp).and_then(|()| {
         // Data on disk before the rename makes the new name visible.
         std::fs::File::open(&temp)
             .and_then(|f| f.sync_all())
-            .map_err(|e| anyhow::anyhow!("cannot write {}: {}", path.display(), io_sentence(&e)))?;
-        std::fs::rename(&temp, path)
-            .map_err(|e| anyhow::anyhow!("cannot write {}: {}", path.display(), io_sentence(&e)))
+            .map_err(sentence)?;
+        std::fs::rename(&temp, real).map_err(sentence)
     });
     if result.is_err() {
         let _ = std::fs::remove_file(&temp);
@@ -125,10 +210,39 @@ pub fn write_atomic_path(
     result
 }
 
-/// Writes `path` atomically through a buffered writer given to `write`.
+/// Writes `path` with `write(file)`, for writers that take a path (the picture encoders,
+/// which pick the format from its extension): atomically, or for a [`Target::Through`]
+/// into a temporary file next to `path` whose bytes are then copied through.
 ///
 /// # Errors
-/// As [`write_atomic_path`]; I/O errors as sentences naming `path`.
+/// The writer's error, or a failure to write, rename or copy, each naming `path`; the
+/// temporary file is removed and a replaced `path` is left as it was.
+pub fn write_atomic_path(
+    path: &Path,
+    write: impl FnOnce(&Path) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
+    let real = match target(path)? {
+        Target::Replace(real) => return replace(&real, path, write),
+        Target::Through => path,
+    };
+    let sentence =
+        |e: io::Error| anyhow::anyhow!("cannot write {}: {}", real.display(), io_sentence(&e));
+    let temp = temp_path(path)?;
+    let result = write(&temp).and_then(|()| {
+        let mut from = std::fs::File::open(&temp).map_err(sentence)?;
+        let mut to = open_through(real).map_err(sentence)?;
+        io::copy(&mut from, &mut to).map_err(sentence)?;
+        to.flush().map_err(sentence)
+    });
+    let _ = std::fs::remove_file(&temp);
+    result
+}
+
+/// Writes `path` atomically through a buffered writer given to `write` (or through it, see
+/// [`Target`]).
+///
+/// # Errors
+/// As [`write_atomic_with`].
 pub fn write_atomic(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
@@ -136,8 +250,9 @@ pub fn write_atomic(
     write_atomic_with(path, |w| write(w).map_err(anyhow::Error::from))
 }
 
-/// Writes `path` atomically through a buffered writer given to `write`, for writers whose
-/// own errors are not I/O errors (a frame that cannot be made half-way through a page).
+/// Writes `path` through a buffered writer given to `write`, for writers whose own errors
+/// are not I/O errors (a frame that cannot be made half-way through a page): atomically,
+/// or for a [`Target::Through`] straight into it.
 ///
 /// # Errors
 /// As [`write_atomic_path`]; I/O errors as sentences naming `path`.
@@ -145,22 +260,48 @@ pub fn write_atomic_with(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
-    write_atomic_path(path, |temp| {
-        let sentence =
-            |e: io::Error| anyhow::anyhow!("cannot write {}: {}", path.display(), io_sentence(&e));
-        let file = std::fs::File::create(temp).map_err(sentence)?;
+    let sentence =
+        |e: io::Error| anyhow::anyhow!("cannot write {}: {}", path.display(), io_sentence(&e));
+    let fill = |file: std::fs::File| {
         let mut w = io::BufWriter::new(file);
         write(&mut w).map_err(|e| match e.downcast::<io::Error>() {
             Ok(io) => sentence(io),
             Err(e) => e,
         })?;
         w.flush().map_err(sentence)
-    })
+    };
+    match target(path)? {
+        Target::Replace(real) => replace(&real, path, |temp| {
+            fill(std::fs::File::create(temp).map_err(sentence)?)
+        }),
+        Target::Through => fill(open_through(path).map_err(sentence)?),
+    }
+}
+
+/// Checks, before any computation, that the file `path` can be written: as
+/// [`check_targets`] in its directory (the one of the file a link points to), or nothing
+/// to check for a path written through.
+///
+/// # Errors
+/// As [`check_targets`].
+pub fn check_file(path: &Path) -> anyhow::Result<()> {
+    let Target::Replace(real) = target(path)? else {
+        return Ok(());
+    };
+    let dir = real.parent().filter(|d| !d.as_os_str().is_empty());
+    let Some(name) = real.file_name() else {
+        bail!("cannot write {}: not a file name", path.display());
+    };
+    check_targets(
+        dir.unwrap_or(Path::new(".")),
+        &[name.to_string_lossy().into_owned()],
+    )
 }
 
 /// Checks, before any computation, that the files `names` can be written in `dir`:
 /// creates `dir` if needed, checks that it is a directory, that no target is a directory,
-/// and that a file can be created there.
+/// and that a file can be created there (and in the directory of each file a link
+/// points to).
 ///
 /// # Errors
 /// A sentence naming the directory or the file.
@@ -175,12 +316,24 @@ pub fn check_targets(dir: &Path, names: &[String]) -> anyhow::Result<()> {
             io_sentence(&e)
         )
     })?;
+    let mut dirs = vec![dir.to_path_buf()];
     for name in names {
-        let p = dir.join(name);
-        if p.is_dir() {
-            bail!("cannot write {}: it is a directory", p.display());
+        // A link elsewhere is replaced in its target's directory, which must take the
+        // temporary file too; a path written through needs none.
+        if let Target::Replace(real) = target(&dir.join(name))? {
+            match real.parent() {
+                Some(d) if !d.as_os_str().is_empty() && !dirs.iter().any(|x| x == d) => {
+                    dirs.push(d.to_path_buf())
+                }
+                _ => {}
+            }
         }
     }
+    dirs.iter().try_for_each(|d| probe(d))
+}
+
+/// Creates and removes a temporary file in `dir`.
+fn probe(dir: &Path) -> anyhow::Result<()> {
     let probe = temp_path(&dir.join("probe"))?;
     std::fs::File::create(&probe).map_err(|e| {
         anyhow::anyhow!(

@@ -4,6 +4,7 @@
 
 mod common;
 use common::*;
+use std::path::Path;
 
 /// `ppoe <cmd> --urdf /dev/stdin ...` with the URDF piped in: `/dev/stdin` is a pipe
 /// here, so a second read of it finds nothing.
@@ -155,4 +156,93 @@ fn io_errors_are_sentences_with_the_path() {
         "{line}"
     );
     assert!(!line.contains("os error"), "{line}");
+}
+
+/// A noise model for the seed robot's six joints (`0.001·k·I` for joint k), as `ppoe fit`
+/// writes it.
+fn seed_noise() -> String {
+    let joints: Vec<serde_json::Value> = (1..=6)
+        .map(|k| serde_json::json!({"name": format!("joint{k}"), "cov": diag(1e-3 * k as f64)}))
+        .collect();
+    serde_json::json!({"model": "full", "joints": joints}).to_string()
+}
+
+/// `{"cases":[{"thetas":…}]}` of two seed cases, without covariances.
+fn seed_thetas() -> String {
+    serde_json::json!({"cases": [{"thetas": vec![0.1; 6]}, {"thetas": vec![-0.3; 6]}]}).to_string()
+}
+
+#[test]
+fn noise_from_standard_input_or_with_a_byte_order_mark() {
+    let dir = fresh_dir("noise-stdin");
+    let (noise, marked, cases) = (dir.join("n.json"), dir.join("bom.json"), dir.join("c.json"));
+    std::fs::write(&noise, seed_noise()).unwrap();
+    std::fs::write(&marked, format!("\u{feff}{}", seed_noise())).unwrap();
+    std::fs::write(&cases, seed_thetas()).unwrap();
+    let eval = |noise: &Path, stdin: &[u8]| {
+        let extra = [
+            "--input",
+            cases.to_str().unwrap(),
+            "--noise",
+            noise.to_str().unwrap(),
+        ];
+        run_bytes(&refs(&seed_args("eval", &extra)), stdin)
+    };
+    let from_file = eval(&noise, b"");
+    success(&from_file);
+    let from_stdin = eval(Path::new("-"), seed_noise().as_bytes());
+    success(&from_stdin);
+    let from_marked = eval(&marked, b"");
+    success(&from_marked);
+    assert_eq!(from_stdin.stdout, from_file.stdout);
+    assert_eq!(from_marked.stdout, from_file.stdout);
+    // The covariances are the model's, not none: the tool covariance is not zero.
+    let v: serde_json::Value = serde_json::from_slice(&from_file.stdout).unwrap();
+    assert_eq!(v["results"].as_array().unwrap().len(), 2);
+    assert!(v["results"][0]["cov"][0][0].as_f64().unwrap() > 0.0, "{v}");
+    // `table --noise -` too.
+    let table = |noise: &str, stdin: &[u8]| {
+        run_bytes(&refs(&seed_args("table", &["--noise", noise])), stdin)
+    };
+    let t_file = table(noise.to_str().unwrap(), b"");
+    let t_stdin = table("-", seed_noise().as_bytes());
+    success(&t_file);
+    success(&t_stdin);
+    let text = String::from_utf8(t_stdin.stdout).unwrap();
+    assert!(text.contains("SEED_NOISE"), "{text}");
+    // The same items; only the file name in the doc comment says where they came from.
+    let file_text = String::from_utf8(t_file.stdout).unwrap();
+    assert!(file_text.contains("n.json"), "{file_text}");
+    assert_eq!(text.replace("stdin", "n.json"), file_text);
+}
+
+#[test]
+fn noise_and_another_input_on_standard_input_is_a_clear_error() {
+    let line = one_line_error(&run(&refs(&seed_args("eval", &["--noise", "-"]))), 1);
+    assert!(
+        line.contains("the input cases and the noise model cannot both come from standard input"),
+        "{line}"
+    );
+    let chain = [
+        "--base",
+        "linkmount",
+        "--tip",
+        "tcp",
+        "--noise",
+        "-",
+        "--urdf",
+        "-",
+    ];
+    for cmd in ["table", "render", "mesh"] {
+        let mut args = vec![cmd];
+        args.extend(chain);
+        if cmd != "table" {
+            args.extend(["--input", "cases.json"]);
+        }
+        let line = one_line_error(&run(&args), 1);
+        assert!(
+            line.contains("the URDF and the noise model cannot both come from standard input"),
+            "{cmd}: {line}"
+        );
+    }
 }

@@ -321,4 +321,29 @@ fn hostile_mesh_files_are_skipped_by_name() {
     }
     assert!(!stderr.contains("tetra.obj"), "{stderr}");
     assert!(dir.join("ppoe-render-0.png").is_file());
+    // A bound below the tetrahedra's 4 triangles reduces them (here to nothing: skipped).
+    let out = run(&[
+        "render",
+        "--urdf",
+        path.to_str().unwrap(),
+        "--base",
+        "base",
+        "--tip",
+        "tool",
+        "--input",
+        input.to_str().unwrap(),
+        "--format",
+        "png",
+        "--out",
+        dir.to_str().unwrap(),
+        "--mesh-triangles",
+        "2",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr
+            .lines()
+            .any(|l| l.contains("tetra.obj") && l.contains("reduc")),
+        "{stderr}"
+    );
 }

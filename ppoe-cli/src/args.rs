@@ -1,0 +1,121 @@
+//! The argument groups and value types several commands share: the chain of a URDF, the
+//! scalar and convention of the PPOE, and what surface to draw at which level. Each
+//! command's own arguments are beside it in [`crate::commands`].
+
+use clap::{Args, ValueEnum};
+use std::path::PathBuf;
+
+/// Which chain of which URDF.
+#[derive(Args, Debug, Clone)]
+pub struct ChainArgs {
+    /// The URDF file (`-`: standard input).
+    #[arg(long, value_name = "FILE")]
+    pub urdf: PathBuf,
+    /// The base link: screw axes and poses are expressed in its frame.
+    #[arg(long, value_name = "LINK")]
+    pub base: String,
+    /// The tip link (e.g. the tool centre point).
+    #[arg(long, value_name = "LINK")]
+    pub tip: String,
+    /// The moving joints, base to tip, comma-separated (default: every moving joint on
+    /// the path; moving joints left out are frozen at 0).
+    #[arg(long, value_name = "A,B,...", value_delimiter = ',')]
+    pub joints: Option<Vec<String>>,
+}
+
+/// The scalar type the PPOE is computed in.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EvalScalar {
+    /// Double precision.
+    F64,
+    /// Single precision: the chain and the inputs are rounded to f32, the outputs
+    /// converted back to f64.
+    F32,
+}
+
+/// Which covariance `eval` returns.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConventionArg {
+    /// The right (local) perturbation of the returned pose, T = T̄·Exp(η), η ~ N(0, Σ)
+    /// in the tip frame (the correct covariance; the default).
+    Ppoe,
+    /// The left (global) perturbation, T = Exp(η)·T̄, η in the base frame.
+    Left,
+    /// pytransform3d's example reproduced exactly (Ad(M) in the last step, continuous
+    /// joints clipped to their limits): for comparison and migration only.
+    Pytransform3d,
+}
+
+impl ConventionArg {
+    /// The core's convention.
+    pub fn core(self) -> ppoe::chain::Convention {
+        match self {
+            ConventionArg::Ppoe => ppoe::chain::Convention::Right,
+            ConventionArg::Left => ppoe::chain::Convention::Left,
+            ConventionArg::Pytransform3d => ppoe::chain::Convention::Pytransform3d,
+        }
+    }
+}
+
+/// Which equiprobable surface of the tool position to draw.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SurfaceArg {
+    /// The lift surface ξ(s) = Σ[:,v]·Σ_vv^(−½)·s, |s| = k, through T̄·Exp(ξ): right
+    /// coverage, bends like the sampled cloud (the default).
+    Lift,
+    /// The linear marginal ellipsoid of the tool position.
+    Marginal,
+    /// pytransform3d's to_projected_ellipsoid of the compatible covariance, factor k (not
+    /// an equiprobable surface; for comparison with the reference).
+    Pytransform3d,
+}
+
+/// The probability level of the surface.
+#[derive(Args, Debug, Clone)]
+#[group(multiple = false)]
+pub struct LevelArgs {
+    /// Draw the surface at K standard deviations (Mahalanobis radius in 3D; a positive
+    /// finite number; default 1).
+    #[arg(long, value_name = "K", allow_negative_numbers = true, value_parser = positive_finite)]
+    pub sigma: Option<f64>,
+    /// Draw the surface holding probability P of the tool positions, 0 < P < 1 (k from
+    /// χ²₃, e.g. 0.95 → k = 2.80).
+    #[arg(long, value_name = "P", allow_negative_numbers = true, value_parser = open_unit)]
+    pub probability: Option<f64>,
+}
+
+/// What to draw and how.
+#[derive(Args, Debug, Clone)]
+pub struct SurfaceArgs {
+    #[command(flatten)]
+    pub level: LevelArgs,
+    /// Which surface to draw.
+    #[arg(long, value_enum, default_value_t = SurfaceArg::Lift)]
+    pub surface: SurfaceArg,
+    /// Grid points per side of the surface (2 to 400).
+    #[arg(long, default_value_t = 40, value_parser = clap::value_parser!(u16).range(2..=400))]
+    pub grid: u16,
+    /// Most triangles drawn per URDF mesh; a mesh with more is reduced by vertex
+    /// clustering, with a notice (the drawing's time and the HTML view's size grow with it).
+    #[arg(long, value_name = "N", default_value_t = crate::meshfile::Limits::default().max_triangles,
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=100_000_000))]
+    pub mesh_triangles: usize,
+}
+
+/// `--sigma`: a positive finite number (a usage error otherwise, exit status 2).
+fn positive_finite(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(k) if k.is_finite() && k > 0.0 => Ok(k),
+        Ok(_) => Err("expected a positive finite number of standard deviations".to_string()),
+        Err(e) => Err(format!("not a number ({e})")),
+    }
+}
+
+/// `--probability`: strictly between 0 and 1 (a usage error otherwise, exit status 2).
+fn open_unit(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(p) if p > 0.0 && p < 1.0 => Ok(p),
+        Ok(_) => Err("expected a probability strictly between 0 and 1".to_string()),
+        Err(e) => Err(format!("not a number ({e})")),
+    }
+}

@@ -1,0 +1,33 @@
+//! `ppoe demo`: the seed example, from the table generated at build time.
+
+use crate::args::SurfaceArgs;
+use crate::{draw, output};
+use clap::Args;
+use std::path::PathBuf;
+
+/// The arguments of `ppoe demo`.
+#[derive(Args, Debug)]
+pub struct DemoArgs {
+    /// The directory to write ppoe-seed.png, ppoe-seed.gif and ppoe-seed.html into.
+    #[arg(long, value_name = "DIR", default_value = ".")]
+    out: PathBuf,
+    #[command(flatten)]
+    surface: SurfaceArgs,
+    /// Use the joint covariances of a noise model written by `ppoe fit` for the seed
+    /// robot instead of the example's.
+    #[arg(long, value_name = "FILE")]
+    noise: Option<PathBuf>,
+    /// The number of animation frames, 1 to 10000 (angle = 0.5·cos(2π(0.5 + step/N))).
+    /// The frames are streamed to the files (memory does not grow with N); each is
+    /// computed three times (to fit the view, for the page, for the GIF).
+    #[arg(long, value_name = "N", default_value_t = 200,
+          value_parser = clap::value_parser!(u32).range(1..=10000))]
+    frames: u32,
+}
+
+/// `ppoe demo`: outputs checked before any computation.
+pub fn run(a: &DemoArgs) -> anyhow::Result<()> {
+    let names = ["ppoe-seed.png", "ppoe-seed.gif", "ppoe-seed.html"].map(String::from);
+    output::check_targets(&a.out, &names)?;
+    draw::demo(&a.out, &a.surface, a.frames as usize, a.noise.as_deref())
+}

@@ -1,0 +1,85 @@
+//! `ppoe table`: the Rust (or C) source of a robot table generated from a URDF.
+
+use crate::args::ChainArgs;
+use crate::{load, noise, output};
+use clap::{Args, ValueEnum};
+use std::path::PathBuf;
+
+/// The arguments of `ppoe table`.
+#[derive(Args, Debug)]
+pub struct TableArgs {
+    #[command(flatten)]
+    chain: ChainArgs,
+    /// Which tables to emit: NAME (f64), NAME_F32 (f32) or both.
+    #[arg(long, value_enum, default_value_t = TableScalar::F64)]
+    scalar: TableScalar,
+    /// The const's name (default: the URDF file's stem in upper case).
+    #[arg(long)]
+    name: Option<String>,
+    /// Also emit NAME_NOISE (and NAME_SIGMA2 for the joint model) from a noise model
+    /// written by `ppoe fit`.
+    #[arg(long, value_name = "FILE")]
+    noise: Option<PathBuf>,
+    /// The language: rust (`pub const` items) or c (a C99 header of `static const` data
+    /// for ppoe-ffi's C API, `ppoe.h`).
+    #[arg(long, value_enum, default_value_t = TableLang::Rust)]
+    lang: TableLang,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum TableLang {
+    Rust,
+    C,
+}
+
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum TableScalar {
+    F32,
+    F64,
+    Both,
+}
+
+/// `ppoe table`: the generated source on standard output.
+pub fn run(a: &TableArgs) -> anyhow::Result<()> {
+    load::check_one_stdin(&[
+        load::urdf_input(&a.chain.urdf),
+        load::noise_input(a.noise.as_deref()),
+    ])?;
+    let robot = load::robot(&a.chain)?;
+    // The file's stem names the table; a pipe's (`/dev/fd/63`) cannot, the robot can.
+    let stem = match &a.chain.urdf.file_stem() {
+        Some(s) if robot.source.regular => s.to_string_lossy().into_owned(),
+        _ => robot.urdf.name.clone(),
+    };
+    let scalar = match a.scalar {
+        TableScalar::F32 => ppoe_build::Scalar::F32,
+        TableScalar::F64 => ppoe_build::Scalar::F64,
+        TableScalar::Both => ppoe_build::Scalar::Both,
+    };
+    let lang = match a.lang {
+        TableLang::Rust => ppoe_build::Lang::Rust,
+        TableLang::C => ppoe_build::Lang::C,
+    };
+    if a.noise.is_some() && lang == ppoe_build::Lang::C {
+        anyhow::bail!("--noise is not supported with --lang c yet: the C API takes the covariances as arguments");
+    }
+    let model = a.noise.as_deref().map(noise::read).transpose()?;
+    let src = ppoe_build::Table {
+        chain: &robot.chain,
+        urdf: &robot.source.bytes,
+        file_name: &robot.source.file_name,
+        name: &ppoe_build::table::const_name(a.name.as_deref(), &stem),
+        scalar,
+        lang,
+        noise: model
+            .as_ref()
+            .map(|(model, path)| ppoe_build::table::Noise { model, path }),
+    }
+    .generate()
+    // Errors of the noise model name its file; the others are the URDF's.
+    .map_err(|e| match e.file() {
+        Some(_) => anyhow::anyhow!("{e}"),
+        None => load::in_input(&robot.source.name, &e),
+    })?;
+    output::print(src.as_bytes())
+}

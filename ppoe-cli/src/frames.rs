@@ -1,0 +1,143 @@
+//! `render` and `mesh`: one frame per case of the input, each computed, written and dropped
+//! in turn (so memory does not grow with the number of cases), after the inputs were read
+//! once and the output files checked. A GIF or an HTML view of all cases makes each frame
+//! twice: once to fit the shared view, once to stream it out (see [`picture::Survey`]).
+
+use crate::args::{ChainArgs, SurfaceArgs};
+use crate::draw::{self, level};
+use crate::names::shown;
+use crate::picture::{self, Frame};
+use crate::{cases, eval, load, output};
+use anyhow::bail;
+use ppoe::chain::ChainView;
+use ppoe::Mat6;
+use std::path::Path;
+
+/// What to do with each frame.
+pub enum Sink<'a> {
+    /// Write frame `i` to `dir/name(i)` with `write`, atomically.
+    Each {
+        /// The output directory.
+        dir: &'a Path,
+        /// The file name of frame `i`.
+        name: &'a dyn Fn(usize) -> String,
+        /// The writer; it writes atomically (see [`output`]).
+        write: &'a dyn Fn(&Path, &Frame) -> anyhow::Result<()>,
+    },
+    /// One animation of every frame at `dir/name`, streamed (see [`picture::Survey`]).
+    Gif {
+        /// The output directory.
+        dir: &'a Path,
+        /// The file name.
+        name: &'a str,
+    },
+    /// One interactive HTML view of every frame at `dir/name`, streamed.
+    Html {
+        /// The output directory.
+        dir: &'a Path,
+        /// The file name.
+        name: &'a str,
+    },
+}
+
+/// Reads the URDF and the cases once and checks them and the outputs, all before any
+/// computation.
+fn prepare(
+    chain_args: &ChainArgs,
+    input: Option<&Path>,
+    noise: Option<&Path>,
+    sink: &Sink<'_>,
+) -> anyhow::Result<(load::Robot, cases::Input)> {
+    load::check_one_stdin(&[
+        load::urdf_input(&chain_args.urdf),
+        load::cases_input(input),
+        load::noise_input(noise),
+    ])?;
+    let robot = load::robot(chain_args)?;
+    let cases = cases::load(input, noise, &robot.chain)?;
+    if cases.cases.is_empty() {
+        bail!("the input has no cases");
+    }
+    cases::check_counts(&robot.chain, &cases)?;
+    let n = cases.cases.len();
+    match sink {
+        Sink::Each { dir, name, .. } => {
+            output::check_targets(dir, &(0..n).map(name).collect::<Vec<_>>())?
+        }
+        Sink::Gif { dir, name } | Sink::Html { dir, name } => {
+            output::check_targets(dir, &[name.to_string()])?
+        }
+    }
+    Ok((robot, cases))
+}
+
+/// Reads the URDF and the cases once, checks the outputs, then computes and writes each
+/// case's frame; prints `wrote <path>` for each file.
+///
+/// # Errors
+/// Input errors (naming the file, case and joint), unwritable outputs (before any
+/// computation), and failures of a case (naming it).
+pub fn run(
+    chain_args: &ChainArgs,
+    input: Option<&Path>,
+    noise: Option<&Path>,
+    surface: &SurfaceArgs,
+    sink: &Sink<'_>,
+) -> anyhow::Result<()> {
+    let (k, label) = level(surface)?;
+    let grid = surface.grid as usize;
+    let (robot, cases) = prepare(chain_args, input, noise, sink)?;
+    let home_frames = robot.chain.home_frames();
+    let visuals = draw::robot_visuals(&robot, &chain_args.urdf, surface)?;
+    let (joints, home) = eval::core_joints::<f64>(&robot.chain);
+    let chain = ChainView {
+        joints: &joints,
+        home,
+    };
+    let (base, tip) = (shown(&robot.chain.base), shown(&robot.chain.tip));
+    let n = cases.cases.len();
+    let make = |i: usize| -> anyhow::Result<Frame> {
+        let case = &cases.cases[i];
+        let covs: Vec<Mat6<f64>> = case.covs.iter().map(|c| Mat6::from(*c)).collect();
+        let title = format!("{base} → {tip}: case {}/{n}", i + 1);
+        let s = draw::state(
+            title,
+            &chain,
+            &home_frames,
+            &case.thetas,
+            &covs,
+            surface.surface,
+            k,
+            grid,
+            &label,
+            &visuals,
+        );
+        // The PPOE checks the inputs; a bad covariance is named as `eval` names it.
+        match s {
+            Ok(s) => Ok(s.frame),
+            Err(e) => Err(eval::named_covariance_error(&chain, i, &covs)
+                .unwrap_or_else(|| e.context(format!("case {i}")))),
+        }
+    };
+    let (p, gif) = match sink {
+        Sink::Each { dir, name, write } => {
+            for i in 0..n {
+                let p = dir.join(name(i));
+                write(&p, &make(i)?)?;
+                output::print(format!("wrote {}\n", p.display()).as_bytes())?;
+            }
+            return Ok(());
+        }
+        Sink::Gif { dir, name } => (dir.join(name), true),
+        Sink::Html { dir, name } => (dir.join(name), false),
+    };
+    let frames = picture::Frames { n, make: &make };
+    let survey = picture::Survey::of(&frames)?;
+    if gif {
+        draw::write_gif(&p, &frames, &survey)?;
+    } else {
+        picture::write_html(&p, &frames, &survey)?;
+    }
+    output::print(format!("wrote {}\n", p.display()).as_bytes())?;
+    Ok(())
+}
