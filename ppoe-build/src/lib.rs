@@ -163,11 +163,13 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod c_names;
 pub mod chain;
 pub mod codegen;
 pub mod codegen_c;
 mod dtd;
 pub mod error;
+pub mod json;
 pub mod literal;
 mod math;
 pub mod noise;

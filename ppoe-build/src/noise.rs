@@ -14,6 +14,7 @@
 use crate::chain::RobotChain;
 use crate::codegen::Scalar;
 use crate::error::{Error, ErrorKind, Result};
+use crate::literal::comment_text;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -55,14 +56,18 @@ fn matrix6(v: &serde_json::Value, what: &str) -> Result<[[f64; 6]; 6]> {
 }
 
 impl NoiseModel {
-    /// Parses the JSON text of a fit result and checks every covariance.
+    /// Parses the JSON text of a fit result (strict JSON, [`crate::json::parse`]: one
+    /// leading BOM skipped, duplicate keys refused) and checks every covariance.
     ///
     /// # Errors
-    /// [`ErrorKind::Config`] naming the joint for malformed JSON, a missing field, or a
-    /// covariance that is not finite, symmetric and PSD within tolerance.
+    /// [`ErrorKind::Json`] with a position for text that is not strict JSON;
+    /// [`ErrorKind::Config`] naming the joint for a missing field or a covariance that is
+    /// not finite, symmetric and PSD within tolerance.
     pub fn parse(text: &str) -> Result<Self> {
-        let v: serde_json::Value =
-            serde_json::from_str(text).map_err(|e| config(format!("noise model: {e}")))?;
+        let v = crate::json::parse(text).map_err(|e| {
+            let message = format!("noise model: {}", e.message());
+            Error::new(e.kind(), message).at(e.position())
+        })?;
         let model = v["model"].as_str().unwrap_or("full").to_string();
         let list = v["joints"]
             .as_array()
@@ -136,9 +141,12 @@ fn literal(x: f64, f32: bool) -> String {
     }
 }
 
-/// The Rust source of the noise items for table `name` (appended after the chain).
+/// The Rust source of the noise items for table `name` (appended after the chain; `name`
+/// is a checked const name). The model's name, its joints' names and `file_name` go into
+/// comments through [`comment_text`], so they cannot end the comment.
 pub fn generate(model: &NoiseModel, name: &str, scalar: Scalar, file_name: &str) -> String {
     let mut out = String::new();
+    let (model_name, file_name) = (comment_text(&model.model), comment_text(file_name));
     let variants: &[(bool, &str)] = match scalar {
         Scalar::F64 => &[(false, "")],
         Scalar::F32 => &[(true, "_F32")],
@@ -154,10 +162,10 @@ pub fn generate(model: &NoiseModel, name: &str, scalar: Scalar, file_name: &str)
              screw coordinates, rotation\n/// first), what `Chain::ppoe` takes as `covs`.\n\
              #[allow(clippy::excessive_precision)]\npub const {name}_NOISE{suffix}: \
              [ppoe::Mat6<{ty}>; {n}] = [\n",
-            model.model
+            model_name
         );
         for j in &model.joints {
-            let _ = writeln!(out, "    // {}\n    ppoe::Matrix([", j.name);
+            let _ = writeln!(out, "    // {}\n    ppoe::Matrix([", comment_text(&j.name));
             for row in &j.cov {
                 let items: Vec<String> = row.iter().map(|x| literal(*x, f32)).collect();
                 let _ = writeln!(out, "        [{}],", items.join(", "));
