@@ -230,4 +230,37 @@ mod tests {
         assert!(e.to_string().contains("6 rows of 6"), "{e}");
         assert!(NoiseModel::parse("{}").is_err());
     }
+
+    #[test]
+    fn strict_json_bom_and_duplicate_keys() {
+        let m = NoiseModel::parse(&format!("\u{feff}{}", model(1e-4))).unwrap();
+        assert_eq!(m.joints.len(), 2);
+        let e = NoiseModel::parse("{\"joints\": [],\n \"joints\": []}").unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::Json);
+        assert!(e.message().contains("duplicate key \"joints\""), "{e}");
+        assert_eq!(e.position().map(|p| p.line), Some(2), "{e}");
+        let e = NoiseModel::parse("{\"joints\": [}").unwrap_err();
+        assert_eq!(
+            (e.kind(), e.position().map(|p| p.line)),
+            (ErrorKind::Json, Some(1))
+        );
+    }
+
+    #[test]
+    fn hostile_model_and_joint_names_stay_in_their_comments() {
+        let text = model(1e-4)
+            .replace("\"joint\"", "\"joint\\nfn injected() {}\"")
+            .replace("\"a\"", "\"a\\r\\nfn injected2() {}\"");
+        let m = NoiseModel::parse(&text).unwrap();
+        assert!(m.model.contains('\n') && m.joints[0].name.contains('\n'));
+        let src = generate(&m, "ARM", Scalar::F64, "x\ny.json");
+        for line in src.lines() {
+            let code = line.trim_start();
+            assert!(
+                !code.starts_with("fn") && !code.starts_with("y.json"),
+                "{src}"
+            );
+        }
+        assert!(src.contains("\\u{a}fn injected() {}"), "{src}");
+    }
 }
