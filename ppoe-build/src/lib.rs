@@ -388,7 +388,9 @@ impl Config {
     /// arguments.
     ///
     /// # Errors
-    /// As [`generate`](Config::generate), and a name that is a C keyword.
+    /// As [`generate`](Config::generate), and those of [`codegen_c::generate`]: a name that
+    /// does not compile in C ([`c_names::check_c_name`]), a chain of more than
+    /// [`codegen_c::C_API_MAX_JOINTS`] joints.
     pub fn generate_c(&self) -> Result<String> {
         self.generate_lang(Lang::C, false)
     }
