@@ -20,7 +20,7 @@
 set -euo pipefail
 
 FUZZ_SECONDS="${FUZZ_SECONDS:-30}"
-FUZZ_TARGETS="${FUZZ_TARGETS:-urdf core_f64 core_f32 eigen mesh}"
+FUZZ_TARGETS="${FUZZ_TARGETS:-urdf core_f64 core_f32 eigen table noise mesh}"
 FUZZ_MAX_LEN="${FUZZ_MAX_LEN:-65536}"
 FUZZ_SUMMARY="${FUZZ_SUMMARY:-}" # if set, "target executions rc seconds" lines are appended to it
 FUZZ_SEED="${FUZZ_SEED:-}"       # libFuzzer -seed (default: random)

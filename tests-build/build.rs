@@ -13,6 +13,7 @@ const RANDOM_ROBOTS: usize = 40;
 fn main() -> Result<(), ppoe_build::Error> {
     println!("cargo:rerun-if-changed=build.rs");
     random_tables();
+    hostile_tables()?;
     // The seed robot of pytransform3d's PPOE example, both scalar types.
     Config::new("../test_data/urdf/seed.urdf")
         .base("linkmount")
@@ -97,4 +98,83 @@ fn random_tables() {
     src += &format!("\n/// The random robots' tables with their URDF text.\npub static RANDOM: &[RandomTable] = &[\n{list}];\n");
     src += &format!("\n/// The random robots ppoe-build rejects: (URDF text, base, tip, error kind).\npub static RANDOM_REJECTED: &[(&str, &str, &str, &str)] = &[\n{rejected}];\n");
     std::fs::write(out_dir.join("random_tables.rs"), src).expect("write random_tables.rs");
+}
+
+/// Writes `hostile_tables.rs`: the seed robot's table once per string of
+/// `ppoe_test_robots::hostile::HOSTILE_STRINGS`, that string in every name (robot, links,
+/// joints), the URDF's file name, and the name and file name of a noise model baked in,
+/// through `Table::generate` as `ppoe table` does. A string that escaped its comment would
+/// inject `compile_error!` and fail this build. `HOSTILE` lists (string, table) for the
+/// test that the names arrive intact.
+fn hostile_tables() -> Result<(), ppoe_build::Error> {
+    use ppoe_build::noise::NoiseModel;
+    use ppoe_build::table::{Lang, Noise, Table};
+    let out_dir = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("OUT_DIR"));
+    let bytes = std::fs::read("../test_data/urdf/seed.urdf").expect("read seed.urdf");
+    let seed = Urdf::parse_bytes(&bytes)?.chain::<&str>("linkmount", "tcp", None)?;
+    let (mut src, mut list) = (String::new(), String::new());
+    for (k, s) in robots::hostile::HOSTILE_STRINGS.iter().enumerate() {
+        let mut chain = seed.clone();
+        (chain.robot, chain.base, chain.tip) = (s.to_string(), format!("{s}b"), format!("{s}t"));
+        for (i, j) in chain.joints.iter_mut().enumerate() {
+            j.name = format!("{s}{i}");
+        }
+        let cov: Vec<Vec<f64>> = (0..6)
+            .map(|i| (0..6).map(|j| if i == j { 1e-4 } else { 0.0 }).collect())
+            .collect();
+        let joints: Vec<String> = chain
+            .joint_names()
+            .iter()
+            .map(|n| {
+                format!(
+                    "{{\"name\": {}, \"cov\": {cov:?}, \"sigma2\": 1e-4}}",
+                    json_str(n)
+                )
+            })
+            .collect();
+        let text = format!(
+            "{{\"model\": {}, \"joints\": [{}]}}",
+            json_str(s),
+            joints.join(", ")
+        );
+        let model = NoiseModel::parse(&text)?;
+        let path = std::path::Path::new("/fits").join(format!("{s}.json"));
+        let name = format!("HOSTILE_{k}");
+        src += &Table {
+            chain: &chain,
+            urdf: &bytes,
+            file_name: &format!("{s}.urdf"),
+            name: &name,
+            scalar: S::Both,
+            lang: Lang::Rust,
+            noise: Some(Noise {
+                model: &model,
+                path: &path,
+            }),
+        }
+        .generate()?;
+        let _ = writeln!(list, "    ({}, &{name}, &{name}_NOISE_F32),", str_lit(s));
+    }
+    src += &format!("\n/// The hostile strings with their tables.\npub static HOSTILE: &[(&str, &ppoe::chain::Chain<f64, 6>, &[ppoe::Mat6<f32>; 6])] = &[\n{list}];\n");
+    std::fs::write(out_dir.join("hostile_tables.rs"), src).expect("write hostile_tables.rs");
+    Ok(())
+}
+
+/// A JSON string literal (`{:?}` is not JSON for every character).
+fn json_str(s: &str) -> String {
+    let mut out = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            ' '..='~' => out.push(c),
+            _ => {
+                for u in c.encode_utf16(&mut [0; 2]) {
+                    let _ = write!(out, "\\u{u:04x}");
+                }
+            }
+        }
+    }
+    out.push('"');
+    out
 }

@@ -10,6 +10,8 @@
 pub mod core_checks;
 pub mod eigen_checks;
 pub mod mesh_checks;
+pub mod noise_checks;
+pub mod table_checks;
 pub mod urdf_checks;
 
 use arbitrary::Arbitrary;

@@ -11,55 +11,19 @@
 use crate::chain::RobotChain;
 use crate::codegen::{Scalar, Source};
 use crate::error::{Error, ErrorKind, Result};
+use crate::literal::c_comment_text as comment_text;
 use ppoe::chain::{Joint, JointKind};
 use ppoe::{Real, Transform};
 use std::fmt::Write as _;
 
-/// C keywords (C99 and the later ones a C compiler may reserve): not usable as names.
-const C_KEYWORDS: &[&str] = &[
-    "auto",
-    "break",
-    "case",
-    "char",
-    "const",
-    "continue",
-    "default",
-    "do",
-    "double",
-    "else",
-    "enum",
-    "extern",
-    "float",
-    "for",
-    "goto",
-    "if",
-    "inline",
-    "int",
-    "long",
-    "register",
-    "restrict",
-    "return",
-    "short",
-    "signed",
-    "sizeof",
-    "static",
-    "struct",
-    "switch",
-    "typedef",
-    "union",
-    "unsigned",
-    "void",
-    "volatile",
-    "while",
-    "bool",
-    "true",
-    "false",
-    "alignas",
-    "alignof",
-    "noreturn",
-    "static_assert",
-    "thread_local",
-];
+/// The most joints a chain of the C API may have: `PPOE_MAX_JOINTS` of `ppoe.h` (ppoe-ffi
+/// copies a chain into fixed-capacity storage of this size). A longer chain is refused at
+/// generation, because every call on its table would return `PPOE_ERR_TOO_MANY_JOINTS` on
+/// the device. The core has no maximum (`Chain<T, N>` holds any N), so the number is the C
+/// API's; ppoe-build cannot depend on ppoe-ffi (a `staticlib` in its own workspace), and
+/// cbindgen needs the literal in ppoe-ffi, so this is a second copy tied to the header by
+/// the test `c_api_max_joints_is_the_headers` (`tests/codegen_c.rs`).
+pub const C_API_MAX_JOINTS: usize = 16;
 
 /// The C header for `chain`: `NAME` (`ppoe_chain_f64`) and/or `NAME_F32`
 /// (`ppoe_chain_f32`), their joint arrays `NAME_JOINTS` / `NAME_F32_JOINTS`, and
@@ -67,14 +31,23 @@ const C_KEYWORDS: &[&str] = &[
 ///
 /// # Errors
 /// [`ErrorKind::Config`] for a name that is not a C identifier (see
-/// [`crate::codegen::check_const_name`]) or is a C keyword; [`ErrorKind::NonFinite`] for a
-/// NaN, or for geometry that does not fit in f32 when an f32 table is asked for.
+/// [`crate::codegen::check_const_name`]) or that collides with a keyword, a reserved
+/// identifier or a name of the included headers ([`crate::c_names::check_c_name`]), and for
+/// a chain of more than [`C_API_MAX_JOINTS`] joints; [`ErrorKind::NonFinite`] for a NaN, or
+/// for geometry that does not fit in f32 when an f32 table is asked for.
 pub fn generate(chain: &RobotChain, name: &str, scalar: Scalar, source: &Source) -> Result<String> {
     crate::codegen::check_const_name(name)?;
-    if C_KEYWORDS.contains(&name) {
+    crate::c_names::check_c_name(name)?;
+    let n = chain.joints.len();
+    if n > C_API_MAX_JOINTS {
         return Err(Error::new(
             ErrorKind::Config,
-            format!("{name:?} is a C keyword: not usable as a table name"),
+            format!(
+                "{name}: the chain {:?} → {:?} has {n} moving joints, but the C API takes at \
+                 most {C_API_MAX_JOINTS} (PPOE_MAX_JOINTS of ppoe.h): every call on this \
+                 table would return PPOE_ERR_TOO_MANY_JOINTS; choose a shorter chain",
+                chain.base, chain.tip
+            ),
         ));
     }
     let mut out = String::new();
@@ -94,7 +67,7 @@ pub fn generate(chain: &RobotChain, name: &str, scalar: Scalar, source: &Source)
         chain
             .joints
             .iter()
-            .map(|j| comment_text(&j.name))
+            .map(|j| comment_text(&j.name).to_string())
             .collect::<Vec<_>>()
             .join(", ")
     );
@@ -229,20 +202,6 @@ fn c_str(s: &str) -> String {
     out
 }
 
-/// Text for a C comment: letters, digits and `_ . - : /` kept (no `*/`: a `*` is replaced),
-/// everything else `_`.
-fn comment_text(s: &str) -> String {
-    s.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || "_.-:/ ".contains(c) {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -255,6 +214,5 @@ mod tests {
         assert_eq!(float(f64::INFINITY, false).unwrap(), "(double)INFINITY");
         assert!(float(f64::NAN, false).is_err());
         assert_eq!(c_str("a\"b?\u{e9}"), "\"a\\\"b\\?\\303\\251\"");
-        assert_eq!(comment_text("x*/y"), "x_/y");
     }
 }

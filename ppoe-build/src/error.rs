@@ -52,6 +52,9 @@ pub enum ErrorKind {
     NotOnPath,
     /// Reading the URDF or writing the generated file failed.
     Io,
+    /// A JSON file (a noise model) is not strict JSON ([`crate::json::parse`]): a syntax
+    /// error, a duplicate key, nesting too deep. The error has a position.
+    Json,
     /// The builder was misused: no base/tip given, `OUT_DIR` unset, an invalid const name.
     Config,
 }
@@ -79,6 +82,7 @@ impl ErrorKind {
             ErrorKind::Mimic => "Mimic",
             ErrorKind::NotOnPath => "NotOnPath",
             ErrorKind::Io => "Io",
+            ErrorKind::Json => "Json",
             ErrorKind::Config => "Config",
         }
     }
@@ -90,7 +94,7 @@ impl fmt::Display for ErrorKind {
     }
 }
 
-/// A position in the URDF text: 1-based line and column (in characters).
+/// A position in the URDF (or JSON) text: 1-based line and column (in characters).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Position {
     /// Line, starting at 1.

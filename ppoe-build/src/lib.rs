@@ -163,11 +163,13 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod c_names;
 pub mod chain;
 pub mod codegen;
 pub mod codegen_c;
 mod dtd;
 pub mod error;
+pub mod json;
 pub mod literal;
 mod math;
 pub mod noise;
@@ -386,7 +388,9 @@ impl Config {
     /// arguments.
     ///
     /// # Errors
-    /// As [`generate`](Config::generate), and a name that is a C keyword.
+    /// As [`generate`](Config::generate), and those of [`codegen_c::generate`]: a name that
+    /// does not compile in C ([`c_names::check_c_name`]), a chain of more than
+    /// [`codegen_c::C_API_MAX_JOINTS`] joints.
     pub fn generate_c(&self) -> Result<String> {
         self.generate_lang(Lang::C, false)
     }

@@ -60,24 +60,61 @@ fn is_format(u: u32) -> bool {
     )
 }
 
-/// Text for a comment (doc or plain, Rust or C): every character of [`needs_escape`] written
-/// as `\u{..}` (a backslash itself stays as it is), so a name can neither end the comment
-/// line nor reorder the text around it, and the comment still shows which character it was.
-/// `*/` is written `*\/` so that the text is also safe inside a C block comment.
-pub fn comment_text(s: &str) -> String {
+/// Text that is safe inside a comment of generated source: made only by [`comment_text`]
+/// (Rust) or [`c_comment_text`] (C), the one escaping path of every name, file name and
+/// noise-model string a table generator writes into a comment. The field is private, so a
+/// generator cannot produce comment text any other way; `Display` writes it.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct CommentText(String);
+
+impl CommentText {
+    /// The escaped text.
+    pub fn as_str(&self) -> &str {
+        &self.0
+    }
+}
+
+impl std::fmt::Display for CommentText {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+/// Text for a comment of generated Rust (doc or plain): every character of
+/// [`needs_escape`] written as `\u{..}` (a backslash itself stays as it is), so a name can
+/// neither end the comment line nor reorder the text around it, and the comment still shows
+/// which character it was. `*/` is written `*\/` and `/*` `/\*`, so the text is also safe
+/// inside a block comment.
+pub fn comment_text(s: &str) -> CommentText {
+    escape_comment(s, false)
+}
+
+/// Text for a comment of generated C: as [`comment_text`], and further every non-ASCII
+/// character (a C compiler need not accept it even in a comment), every backslash (a
+/// backslash before the end of the line would splice the next line into the comment) and
+/// the second `?` of `??` (trigraphs: `??/` is a backslash in C99) written as `\u{..}`.
+/// The result is printable ASCII.
+pub fn c_comment_text(s: &str) -> CommentText {
+    escape_comment(s, true)
+}
+
+/// The one escaping of comment text ([`comment_text`], [`c_comment_text`]).
+fn escape_comment(s: &str, c: bool) -> CommentText {
     let mut out = String::with_capacity(s.len());
     let mut prev = '\0';
-    for c in s.chars() {
-        if needs_escape(c) {
-            let _ = write!(out, "\\u{{{:x}}}", c as u32);
-        } else if c == '/' && prev == '*' {
-            out.push_str("\\/");
+    for ch in s.chars() {
+        let c_only = c && (!ch.is_ascii() || ch == '\\' || (ch == '?' && prev == '?'));
+        if needs_escape(ch) || c_only {
+            let _ = write!(out, "\\u{{{:x}}}", ch as u32);
+        } else if (ch == '/' && prev == '*') || (ch == '*' && prev == '/') {
+            out.push('\\');
+            out.push(ch);
         } else {
-            out.push(c);
+            out.push(ch);
         }
-        prev = c;
+        prev = ch;
     }
-    out
+    CommentText(out)
 }
 
 /// A Rust string literal with only printable ASCII in it: `"` and `\` escaped, everything
@@ -260,7 +297,19 @@ mod tests {
             '\u{10ffff}',
         ] {
             let t = comment_text(&format!("a{c}b"));
-            assert_eq!(t, format!("a\\u{{{:x}}}b", c as u32), "{:x}", c as u32);
+            assert_eq!(
+                t.as_str(),
+                format!("a\\u{{{:x}}}b", c as u32),
+                "{:x}",
+                c as u32
+            );
+            let t = c_comment_text(&format!("a{c}b"));
+            assert_eq!(
+                t.as_str(),
+                format!("a\\u{{{:x}}}b", c as u32),
+                "{:x}",
+                c as u32
+            );
         }
         // Readable names stay readable.
         for s in [
@@ -271,9 +320,28 @@ mod tests {
             "with space",
             "a\\b \"q\" `c`",
         ] {
-            assert_eq!(comment_text(s), s);
+            assert_eq!(comment_text(s).as_str(), s);
         }
-        assert_eq!(comment_text("a*/b"), "a*\\/b");
+        assert_eq!(comment_text("a*/b").as_str(), "a*\\/b");
+        assert_eq!(comment_text("a/*b").as_str(), "a/\\*b");
+        assert_eq!(comment_text("a\\b").as_str(), "a\\b");
+    }
+
+    #[test]
+    fn c_comments_are_printable_ascii_without_splices_or_trigraphs() {
+        assert_eq!(
+            c_comment_text("joint_1 (a) [b]").as_str(),
+            "joint_1 (a) [b]"
+        );
+        assert_eq!(c_comment_text("a*/b/*c").as_str(), "a*\\/b/\\*c");
+        assert_eq!(c_comment_text("end\\").as_str(), "end\\u{5c}");
+        assert_eq!(c_comment_text("x??/y").as_str(), "x?\\u{3f}/y");
+        assert_eq!(c_comment_text("???").as_str(), "?\\u{3f}\\u{3f}");
+        assert_eq!(c_comment_text("a?b").as_str(), "a?b");
+        assert_eq!(
+            c_comment_text("\u{e4}\u{1f527}").as_str(),
+            "\\u{e4}\\u{1f527}"
+        );
     }
 
     #[test]

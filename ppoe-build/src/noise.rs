@@ -14,6 +14,7 @@
 use crate::chain::RobotChain;
 use crate::codegen::Scalar;
 use crate::error::{Error, ErrorKind, Result};
+use crate::literal::comment_text;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -55,14 +56,18 @@ fn matrix6(v: &serde_json::Value, what: &str) -> Result<[[f64; 6]; 6]> {
 }
 
 impl NoiseModel {
-    /// Parses the JSON text of a fit result and checks every covariance.
+    /// Parses the JSON text of a fit result (strict JSON, [`crate::json::parse`]: one
+    /// leading BOM skipped, duplicate keys refused) and checks every covariance.
     ///
     /// # Errors
-    /// [`ErrorKind::Config`] naming the joint for malformed JSON, a missing field, or a
-    /// covariance that is not finite, symmetric and PSD within tolerance.
+    /// [`ErrorKind::Json`] with a position for text that is not strict JSON;
+    /// [`ErrorKind::Config`] naming the joint for a missing field or a covariance that is
+    /// not finite, symmetric and PSD within tolerance.
     pub fn parse(text: &str) -> Result<Self> {
-        let v: serde_json::Value =
-            serde_json::from_str(text).map_err(|e| config(format!("noise model: {e}")))?;
+        let v = crate::json::parse(text).map_err(|e| {
+            let message = format!("noise model: {}", e.message());
+            Error::new(e.kind(), message).at(e.position())
+        })?;
         let model = v["model"].as_str().unwrap_or("full").to_string();
         let list = v["joints"]
             .as_array()
@@ -136,9 +141,12 @@ fn literal(x: f64, f32: bool) -> String {
     }
 }
 
-/// The Rust source of the noise items for table `name` (appended after the chain).
+/// The Rust source of the noise items for table `name` (appended after the chain; `name`
+/// is a checked const name). The model's name, its joints' names and `file_name` go into
+/// comments through [`comment_text`], so they cannot end the comment.
 pub fn generate(model: &NoiseModel, name: &str, scalar: Scalar, file_name: &str) -> String {
     let mut out = String::new();
+    let (model_name, file_name) = (comment_text(&model.model), comment_text(file_name));
     let variants: &[(bool, &str)] = match scalar {
         Scalar::F64 => &[(false, "")],
         Scalar::F32 => &[(true, "_F32")],
@@ -154,10 +162,10 @@ pub fn generate(model: &NoiseModel, name: &str, scalar: Scalar, file_name: &str)
              screw coordinates, rotation\n/// first), what `Chain::ppoe` takes as `covs`.\n\
              #[allow(clippy::excessive_precision)]\npub const {name}_NOISE{suffix}: \
              [ppoe::Mat6<{ty}>; {n}] = [\n",
-            model.model
+            model_name
         );
         for j in &model.joints {
-            let _ = writeln!(out, "    // {}\n    ppoe::Matrix([", j.name);
+            let _ = writeln!(out, "    // {}\n    ppoe::Matrix([", comment_text(&j.name));
             for row in &j.cov {
                 let items: Vec<String> = row.iter().map(|x| literal(*x, f32)).collect();
                 let _ = writeln!(out, "        [{}],", items.join(", "));
@@ -221,5 +229,38 @@ mod tests {
         let e = NoiseModel::parse("{\"joints\": [{\"name\": \"a\", \"cov\": [[1]]}]}").unwrap_err();
         assert!(e.to_string().contains("6 rows of 6"), "{e}");
         assert!(NoiseModel::parse("{}").is_err());
+    }
+
+    #[test]
+    fn strict_json_bom_and_duplicate_keys() {
+        let m = NoiseModel::parse(&format!("\u{feff}{}", model(1e-4))).unwrap();
+        assert_eq!(m.joints.len(), 2);
+        let e = NoiseModel::parse("{\"joints\": [],\n \"joints\": []}").unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::Json);
+        assert!(e.message().contains("duplicate key \"joints\""), "{e}");
+        assert_eq!(e.position().map(|p| p.line), Some(2), "{e}");
+        let e = NoiseModel::parse("{\"joints\": [}").unwrap_err();
+        assert_eq!(
+            (e.kind(), e.position().map(|p| p.line)),
+            (ErrorKind::Json, Some(1))
+        );
+    }
+
+    #[test]
+    fn hostile_model_and_joint_names_stay_in_their_comments() {
+        let text = model(1e-4)
+            .replace("\"joint\"", "\"joint\\nfn injected() {}\"")
+            .replace("\"a\"", "\"a\\r\\nfn injected2() {}\"");
+        let m = NoiseModel::parse(&text).unwrap();
+        assert!(m.model.contains('\n') && m.joints[0].name.contains('\n'));
+        let src = generate(&m, "ARM", Scalar::F64, "x\ny.json");
+        for line in src.lines() {
+            let code = line.trim_start();
+            assert!(
+                !code.starts_with("fn") && !code.starts_with("y.json"),
+                "{src}"
+            );
+        }
+        assert!(src.contains("\\u{a}fn injected() {}"), "{src}");
     }
 }

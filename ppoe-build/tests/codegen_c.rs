@@ -2,6 +2,8 @@
 //! repository's `test_data/` and `ppoe-ffi/include/ppoe.h`, which the packaged crate does
 //! not ship.
 
+mod common;
+
 use ppoe_build::{Config, Scalar};
 
 #[test]
@@ -40,4 +42,89 @@ fn compiles_as_c99() {
         assert!(out.status.success(), "{file}: C99 compile failed:\n{err}");
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The chain of the seed robot with its joints repeated to `n` joints (names made unique).
+fn seed_with_joints(n: usize) -> ppoe_build::RobotChain {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let bytes = std::fs::read(root.join("test_data/urdf/seed.urdf")).unwrap();
+    let mut chain = ppoe_build::Urdf::parse_bytes(&bytes)
+        .unwrap()
+        .chain::<&str>("linkmount", "tcp", None)
+        .unwrap();
+    let joints = chain.joints.clone();
+    chain.joints = (0..n)
+        .map(|i| {
+            let mut j = joints[i % joints.len()].clone();
+            j.name = format!("j{i}");
+            j
+        })
+        .collect();
+    chain
+}
+
+fn source() -> ppoe_build::Source {
+    ppoe_build::Source {
+        file_name: "seed.urdf".into(),
+        sha256: "0".repeat(64),
+    }
+}
+
+#[test]
+fn c_api_max_joints_is_the_headers() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let header = std::fs::read_to_string(root.join("ppoe-ffi/include/ppoe.h")).unwrap();
+    let value = header
+        .lines()
+        .find_map(|l| l.strip_prefix("#define PPOE_MAX_JOINTS "))
+        .expect("ppoe.h defines PPOE_MAX_JOINTS");
+    assert_eq!(
+        value.trim().parse::<usize>().unwrap(),
+        ppoe_build::codegen_c::C_API_MAX_JOINTS
+    );
+    // No identifier of ppoe.h is in the table's include-guard namespace, and every one is
+    // in the namespace c_names refuses.
+    assert!(!header.contains("PPOE_TABLE_"));
+    for word in header.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')) {
+        if word.to_ascii_lowercase().starts_with("ppoe") && word.len() > 5 {
+            assert!(word.to_ascii_lowercase().starts_with("ppoe_"), "{word}");
+        }
+    }
+}
+
+#[test]
+fn chains_longer_than_the_c_api_takes_are_refused() {
+    use ppoe_build::codegen_c::{generate, C_API_MAX_JOINTS};
+    let max = C_API_MAX_JOINTS;
+    let ok = generate(&seed_with_joints(max), "R", Scalar::Both, &source()).unwrap();
+    let main = "int f(void);\nint f(void) { return (int)R.n_joints; }\n";
+    common::cc_syntax_check(&ok, main, "c99", "ppoe-max-joints").unwrap();
+    let e = generate(&seed_with_joints(max + 1), "R", Scalar::F64, &source()).unwrap_err();
+    assert_eq!(e.kind(), ppoe_build::ErrorKind::Config);
+    let m = e.message();
+    assert!(m.contains(&format!("has {} moving joints", max + 1)), "{m}");
+    assert!(m.contains(&format!("at most {max}")), "{m}");
+    // The Rust core has no maximum: the same chain is a Rust table.
+    let rust =
+        ppoe_build::codegen::generate(&seed_with_joints(max + 4), "R", Scalar::F64, &source());
+    assert!(rust.is_ok());
+}
+
+#[test]
+fn names_that_collide_in_c_are_refused_naming_them() {
+    let chain = seed_with_joints(2);
+    for bad in [
+        "_Bool", "bool", "NULL", "PPOE_OK", "offsetof", "INFINITY", "sin", "int8_t", "A_", "__x",
+    ] {
+        let e = ppoe_build::codegen_c::generate(&chain, bad, Scalar::F64, &source()).unwrap_err();
+        assert_eq!(e.kind(), ppoe_build::ErrorKind::Config, "{bad}");
+        assert!(e.message().contains(&format!("{bad:?}")), "{bad}: {e}");
+        // The same names are fine in Rust, where they do not collide.
+        if !bad.starts_with('_') && bad != "bool" {
+            assert!(
+                ppoe_build::codegen::generate(&chain, bad, Scalar::F64, &source()).is_ok(),
+                "{bad}"
+            );
+        }
+    }
 }

@@ -1,8 +1,8 @@
 //! Decoding an input read once ([`crate::load::read`]): every JSON input and noise model
 //! passes through [`text`], the one place a UTF-8 byte-order mark (as Windows editors
 //! write) is dropped, and every JSON text the CLI parses itself passes through
-//! [`parse_json`], the one place JSON is parsed (so a stricter parser, one that rejects
-//! repeated keys, can be put in here alone). The URDF is decoded by `ppoe-build`'s reader.
+//! [`parse_json`], the one place JSON is parsed (ppoe-build's strict reader: repeated keys
+//! are refused). The URDF is decoded by `ppoe-build`'s reader.
 
 use serde::de::DeserializeOwned;
 
@@ -17,13 +17,20 @@ pub fn text(bytes: &[u8]) -> Result<&str, std::str::Utf8Error> {
     std::str::from_utf8(bytes.strip_prefix(BOM).unwrap_or(bytes))
 }
 
-/// Parses the JSON `text` (from [`text`]) as `T`, once.
+/// Parses the JSON `text` (from [`text`]) as `T`, once, with ppoe-build's strict reader
+/// (a repeated key is an error, as is nesting beyond its depth bound).
 ///
 /// # Errors
-/// Malformed JSON or JSON of another shape: the [`serde_json::Error`] (with its line and
-/// column) as an [`anyhow::Error`]; callers name the input.
+/// Malformed JSON (ppoe-build's [`ErrorKind::Json`](ppoe_build::ErrorKind::Json) error,
+/// with its line and column, or naming the repeated key) or JSON of another shape (a
+/// [`serde_json::Error`]), as an [`anyhow::Error`]; callers name the input.
 pub fn parse_json<T: DeserializeOwned>(text: &str) -> anyhow::Result<T> {
-    Ok(serde_json::from_str(text)?)
+    // [`text`] dropped the one mark allowed; ppoe-build's reader would drop a second.
+    if text.starts_with('\u{feff}') {
+        anyhow::bail!("1:1: JSON: a second byte-order mark");
+    }
+    let value = ppoe_build::json::parse(text)?;
+    Ok(serde_json::from_value(value)?)
 }
 
 /// `true` if `e`, from [`parse_json`], says the JSON is well-formed but of another shape
@@ -60,6 +67,14 @@ mod tests {
         let syntax = parse_json::<Vec<f64>>("[1,").unwrap_err();
         assert!(is_shape_error(&shape));
         assert!(!is_shape_error(&syntax));
-        assert!(syntax.to_string().contains("line 1 column 3"), "{syntax}");
+        assert!(syntax.to_string().contains("1:3"), "{syntax}");
+    }
+
+    #[test]
+    fn a_repeated_key_is_refused() {
+        let e =
+            parse_json::<serde_json::Value>("{\"samples\": [],\n \"samples\": [1]}").unwrap_err();
+        assert!(e.to_string().contains("duplicate key \"samples\""), "{e}");
+        assert!(!is_shape_error(&e));
     }
 }

@@ -36,6 +36,15 @@ mod random {
 }
 pub use random::{RANDOM, RANDOM_REJECTED};
 
+// Generated; only HOSTILE is used (the other items are there to be compiled).
+#[allow(missing_docs, dead_code, clippy::all)]
+mod hostile {
+    include!(concat!(env!("OUT_DIR"), "/hostile_tables.rs"));
+}
+/// The seed robot's table once per hostile string of `ppoe_test_robots::hostile` (in every
+/// name and file name, and in a noise model baked in): (string, table, f32 noise).
+pub use hostile::HOSTILE;
+
 /// The tables are usable in constant expressions (no parsing, no allocation).
 const _: () = {
     assert!(SEED.joints.len() == 6);

@@ -217,3 +217,22 @@ fn random_robot_tables_equal_the_runtime_chain() {
         assert_eq!(e.kind().name(), *kind);
     }
 }
+
+/// The hostile tables compiled (an injected `compile_error!` would have stopped the build)
+/// and hold the hostile names exactly, with the seed robot's numbers and the noise baked in.
+#[test]
+fn hostile_names_arrive_intact() {
+    let strings = ppoe_test_robots::hostile::HOSTILE_STRINGS;
+    assert_eq!(tests_build::HOSTILE.len(), strings.len());
+    for ((s, table, noise), expected) in tests_build::HOSTILE.iter().zip(strings) {
+        assert_eq!(s, expected);
+        assert_eq!(table.base, format!("{s}b"));
+        assert_eq!(table.tip, format!("{s}t"));
+        for (i, j) in table.joints.iter().enumerate() {
+            assert_eq!(j.name, format!("{s}{i}"));
+            assert_eq!(j.screw, SEED.joints[i].screw, "{s:?}");
+            assert_eq!(noise[i].0[0][0], 1e-4f32);
+        }
+        assert_eq!(table.home, SEED.home);
+    }
+}

@@ -41,3 +41,27 @@ pub fn rustfmt_check(source: &str, dir_prefix: &str, tag: &str) -> Option<String
         )
     })
 }
+
+/// `Ok` if `cc -std={std} -Wall -Wextra -Werror -pedantic -fsyntax-only` accepts a C file
+/// that includes `header` (with ppoe-ffi's `ppoe.h` on the include path) and `main_c`, else
+/// the compiler's messages. The files go to a temporary directory `{tag}-{pid}`.
+pub fn cc_syntax_check(header: &str, main_c: &str, std: &str, tag: &str) -> Result<(), String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let dir = std::env::temp_dir().join(format!("{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("table.h"), header).unwrap();
+    std::fs::write(dir.join("t.c"), format!("#include \"table.h\"\n{main_c}")).unwrap();
+    let out = Command::new("cc")
+        .arg(format!("-std={std}"))
+        .args(["-Wall", "-Wextra", "-Werror", "-pedantic", "-fsyntax-only"])
+        .arg(format!("-I{}", root.join("ppoe-ffi/include").display()))
+        .arg(dir.join("t.c"))
+        .output()
+        .expect("a C compiler (cc) on the PATH");
+    let _ = std::fs::remove_dir_all(&dir);
+    if out.status.success() {
+        Ok(())
+    } else {
+        Err(String::from_utf8_lossy(&out.stderr).into_owned())
+    }
+}

@@ -13,6 +13,9 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod hostile;
+pub mod skeleton;
+
 /// xorshift64*: enough randomness for test inputs, no dependency.
 pub struct Rng(u64);
 
