@@ -3,7 +3,7 @@
 //! joint's right perturbation, base-frame screw coordinates, rotation first).
 //!
 //! ```
-//! use ppoe::joint::{Joint, JointKind};
+//! use ppoe::chain::{Joint, JointKind};
 //! use ppoe::Vec3;
 //! // Revolute about z through (1, 0, 0): screw axis (ŝ, q × ŝ) = (0, 0, 1, 0, −1, 0).
 //! let j = Joint::new("j", JointKind::Revolute, [0., 0., 1., 0., -1., 0.], -4.0, 4.0);
@@ -208,7 +208,7 @@ impl<T: Real> Joint<T> {
     /// ([`ChainView::check`](crate::chain::ChainView::check) does).
     ///
     /// ```
-    /// use ppoe::joint::{Joint, JointKind};
+    /// use ppoe::chain::{Joint, JointKind};
     /// // A prismatic joint along y with a 0.3 m stroke.
     /// const SLIDE: Joint<f64> =
     ///     Joint::new("slide", JointKind::Prismatic, [0., 0., 0., 0., 1., 0.], 0.0, 0.3);
@@ -272,7 +272,7 @@ impl<T: Real> Joint<T> {
     /// kept: such a joint stays on the per-call path, whose result is the same.
     ///
     /// ```
-    /// use ppoe::joint::{Joint, JointKind};
+    /// use ppoe::chain::{Joint, JointKind};
     /// let j = Joint::new("j", JointKind::Revolute, [0., 1., 0., 0., 0., 0.5], -3.0, 3.0);
     /// assert!(j.constants().is_none()); // `new` is `const`: it cannot compute them
     /// let p = j.prepared();

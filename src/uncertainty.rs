@@ -20,9 +20,8 @@
 //! approx::assert_relative_eq!(back, right, epsilon = 1e-18, max_relative = 1e-12);
 //! ```
 
-use crate::ellipsoid::SymmetricEigen;
 use crate::error::Error;
-use crate::linalg::{Mat3, Mat6, Matrix};
+use crate::linalg::{Mat3, Mat6, Matrix, SymmetricEigen};
 use crate::scalar::Real;
 use crate::se3::Transform;
 
