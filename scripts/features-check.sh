@@ -61,13 +61,10 @@ done
 if [ $THUMB = 1 ]; then
   target=thumbv7em-none-eabihf
   step "ppoe --features defmt,mint,serde,nalgebra for $target (build-std)"
-  eval "$("$ROOT/scripts/setup-thumb.sh" --env)"
-  unset RUSTFLAGS CARGO_ENCODED_RUSTFLAGS CARGO_BUILD_RUSTFLAGS CARGO_BUILD_TARGET
-  env RUSTC="$THUMB_RUSTC" RUSTC_BOOTSTRAP=1 \
-      CARGO_UNSTABLE_BUILD_STD=core,compiler_builtins \
-      CARGO_UNSTABLE_BUILD_STD_FEATURES=compiler-builtins-mem \
-      CARGO_TARGET_DIR="${THUMB_TARGET_DIR:-$ROOT/target/thumb}" \
-      /usr/bin/cargo rustc --locked -p ppoe --lib --release --target "$target" \
+  . "$ROOT/scripts/lib/thumb-env.sh"
+  thumb_toolchain 1
+  thumb_build_env "${THUMB_TARGET_DIR:-$ROOT/target/thumb}"
+  env "${BUILD_ENV[@]}" "$CARGO" rustc --locked -p ppoe --lib --release --target "$target" \
       --no-default-features --features defmt,mint,serde,nalgebra -- -D warnings
 fi
 echo "features-check: OK"

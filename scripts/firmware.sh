@@ -106,37 +106,13 @@ now_ms() { echo $(( $(date +%s%N) / 1000000 )); }
 fmt_s() { printf '%d.%01d s' $(( $1 / 1000 )) $(( ($1 % 1000) / 100 )); }
 T_ALL=$(now_ms)
 
-# --- Toolchain ------------------------------------------------------------------------------
-if [ $SETUP = 1 ]; then
-  eval "$("$ROOT/scripts/setup-thumb.sh" --env)"
-else
-  THUMB_RUSTC=/usr/bin/rustc
-  # The same choice as setup-thumb.sh (the default toolchain's rust-lld first): the linker is
-  # part of cargo's fingerprint, another one would rebuild libcore for every target.
-  THUMB_LINKER=$(env -u RUSTC rustc --print sysroot 2>/dev/null)/lib/rustlib/$(uname -m)-unknown-linux-gnu/bin/rust-lld
-  [ -x "$THUMB_LINKER" ] || THUMB_LINKER=$(ls "${RUSTUP_HOME:-$HOME/.rustup}"/toolchains/*/lib/rustlib/"$(uname -m)"-unknown-linux-gnu/bin/rust-lld 2>/dev/null | head -1 || true)
-  [ -n "$THUMB_LINKER" ] || THUMB_LINKER=$(command -v arm-none-eabi-ld || true)
-fi
-[ -x "$THUMB_RUSTC" ] || { echo "firmware: $THUMB_RUSTC missing: run scripts/setup-thumb.sh" >&2; exit 1; }
-[ -n "$THUMB_LINKER" ] || { echo "firmware: no linker (rust-lld or arm-none-eabi-ld)" >&2; exit 1; }
+# --- Toolchain (scripts/lib/thumb-env.sh: Debian's, the one the budgets were measured with) ---
+. "$ROOT/scripts/lib/thumb-env.sh"
+thumb_toolchain $SETUP
 command -v qemu-system-arm >/dev/null || { echo "firmware: qemu-system-arm missing: run scripts/setup-thumb.sh" >&2; exit 1; }
-
-# Host flags must not leak into the thumb builds (nor into build scripts built by Debian's rustc).
-unset RUSTFLAGS CARGO_ENCODED_RUSTFLAGS CARGO_BUILD_RUSTFLAGS CARGO_BUILD_TARGET RUSTDOCFLAGS
 # Absolute: the builds run in $FW, the runs and checks here.
 TD=$(realpath -m "${FIRMWARE_TARGET_DIR:-$FW/target}")
-BUILD_ENV=(
-  RUSTC="$THUMB_RUSTC"
-  RUSTC_BOOTSTRAP=1
-  CARGO_UNSTABLE_BUILD_STD=core,compiler_builtins
-  CARGO_UNSTABLE_BUILD_STD_FEATURES=compiler-builtins-mem
-  CARGO_TARGET_DIR="$TD"
-)
-for t in "${TRIPLE[@]}"; do
-  BUILD_ENV+=("CARGO_TARGET_$(tr 'a-z.-' 'A-Z__' <<<"$t")_LINKER=$THUMB_LINKER")
-done
-CARGO=${THUMB_CARGO:-/usr/bin/cargo}   # Debian's cargo: same version as the compiler
-[ -x "$CARGO" ] || CARGO=$(command -v cargo)
+thumb_build_env "$TD" "${TRIPLE[@]}"
 echo "firmware: rustc $("$THUMB_RUSTC" -V); cargo $CARGO ($(env "${BUILD_ENV[@]}" "$CARGO" -V))"
 echo "firmware: linker $THUMB_LINKER; target dir $TD"
 

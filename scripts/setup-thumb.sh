@@ -14,25 +14,64 @@
 # Debian's rustc has no rust-lld: we use rustup's (~/.rustup/toolchains/*/lib/rustlib/<host>/bin/
 # rust-lld) and fall back to arm-none-eabi-ld.
 #
+# rustup first, where it is enough: `--rustup TARGET` tries `rustup target add TARGET` before
+# anything else and, when it works, reports THUMB_KIND=rustup (the toolchain a user of the
+# firmware template has: rustup's compiler, its prebuilt libcore, its rust-lld). The firmware
+# budgets (firmware-budgets.toml) were measured with Debian's compiler and a libcore built by
+# build-std with the firmware's own profile, and the core-only thumb builds rely on build-std
+# building *only* core (a prebuilt target also ships alloc); so scripts/firmware.sh,
+# thumb-check.sh and features-check.sh ask for Debian's toolchain (no --rustup) on purpose.
+#
 # Idempotent: installs nothing (and runs no `apt-get update`) when everything is present.
 # Needs root (or password-less sudo) only when something must be installed.
 #
-# Usage: scripts/setup-thumb.sh          install if missing, report what is used (on stderr)
-#        scripts/setup-thumb.sh --env    same, and print shell assignments on stdout:
-#                                          eval "$(scripts/setup-thumb.sh --env)"
-#        -> THUMB_RUSTC THUMB_SYSROOT THUMB_LINKER THUMB_LINKER_FLAVOR
+# Usage: scripts/setup-thumb.sh [--env] [--no-install] [--rustup TARGET]
+#   (none)          install if missing, report what is used (on stderr)
+#   --env           also print shell assignments on stdout:
+#                     eval "$(scripts/setup-thumb.sh --env)"
+#                   -> THUMB_KIND (debian|rustup) THUMB_RUSTC THUMB_SYSROOT THUMB_LINKER
+#                      THUMB_LINKER_FLAVOR
+#   --no-install    install nothing: fail if a package is missing (the scripts' --no-setup)
+#   --rustup TARGET rustup's toolchain if it has or can add TARGET (`rustup target add`,
+#                   also with --no-install: it is the user's toolchain, not a system package),
+#                   else Debian's
+# The scripts source scripts/lib/thumb-env.sh, which calls this and builds the cargo
+# environment from its answer (one definition of the toolchain block).
 set -euo pipefail
 
-PRINT_ENV=0
-case "${1:-}" in
-  --env) PRINT_ENV=1 ;;
-  "") ;;
-  -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
-  *) echo "setup-thumb: unknown argument '$1'" >&2; exit 2 ;;
-esac
+PRINT_ENV=0; INSTALL=1; RUSTUP_TARGET=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --env) PRINT_ENV=1 ;;
+    --no-install) INSTALL=0 ;;
+    --rustup) RUSTUP_TARGET=${2:?--rustup needs a target}; shift ;;
+    -h|--help) sed -n '2,36p' "$0"; exit 0 ;;
+    *) echo "setup-thumb: unknown argument '$1'" >&2; exit 2 ;;
+  esac
+  shift
+done
 
 log() { echo "setup-thumb: $*" >&2; }
 die() { echo "setup-thumb: ERROR: $*" >&2; exit 1; }
+
+# --- rustup first, when asked for one target ---------------------------------------------
+if [ -n "$RUSTUP_TARGET" ] && command -v rustup >/dev/null; then
+  if env -u RUSTC rustup target list --installed 2>/dev/null | grep -qx "$RUSTUP_TARGET" \
+     || timeout 120 env -u RUSTC rustup target add "$RUSTUP_TARGET" >&2; then
+    RUSTC_RUSTUP=$(env -u RUSTC rustup which rustc)
+    SYSROOT_RUSTUP=$("$RUSTC_RUSTUP" --print sysroot)
+    LLD=$SYSROOT_RUSTUP/lib/rustlib/$(uname -m)-unknown-linux-gnu/bin/rust-lld
+    if [ -x "$LLD" ]; then
+      log "rustup: $RUSTC_RUSTUP ($("$RUSTC_RUSTUP" -V)) has $RUSTUP_TARGET; linker $LLD"
+      if [ $PRINT_ENV = 1 ]; then
+        printf 'THUMB_KIND=rustup\nTHUMB_RUSTC=%q\nTHUMB_SYSROOT=%q\nTHUMB_LINKER=%q\nTHUMB_LINKER_FLAVOR=rust-lld\n' \
+          "$RUSTC_RUSTUP" "$SYSROOT_RUSTUP" "$LLD"
+      fi
+      exit 0
+    fi
+  fi
+  log "rustup cannot provide $RUSTUP_TARGET here: Debian's rustc-web with build-std instead"
+fi
 
 PKGS=(rustc-web cargo-web rust-web-src libstd-rust-web-dev binutils-arm-none-eabi qemu-system-arm
       qemu-system-misc gcc-arm-none-eabi libnewlib-arm-none-eabi)
@@ -44,7 +83,9 @@ is_installed() {  # dpkg's view: "install ok installed"
 MISSING=()
 for p in "${PKGS[@]}"; do is_installed "$p" || MISSING+=("$p"); done
 
-if [ ${#MISSING[@]} -gt 0 ]; then
+if [ ${#MISSING[@]} -gt 0 ] && [ $INSTALL = 0 ]; then
+  die "missing: ${MISSING[*]}: run scripts/setup-thumb.sh (without --no-install)"
+elif [ ${#MISSING[@]} -gt 0 ]; then
   command -v apt-get >/dev/null || die "apt-get not found (Debian 12 expected); missing: ${MISSING[*]}"
   SUDO=()
   if [ "$(id -u)" != 0 ]; then
@@ -73,7 +114,7 @@ fi
 
 # --- cbindgen (the C header of ppoe-ffi is generated and checked against it) -----------------
 CBINDGEN_VERSION=0.29.4
-if ! command -v cbindgen >/dev/null || [ "$(cbindgen --version 2>/dev/null)" != "cbindgen $CBINDGEN_VERSION" ]; then
+if [ $INSTALL = 1 ] && { ! command -v cbindgen >/dev/null || [ "$(cbindgen --version 2>/dev/null)" != "cbindgen $CBINDGEN_VERSION" ]; }; then
   log "cargo install cbindgen $CBINDGEN_VERSION (the C header check needs this exact version)"
   env -u RUSTC -u RUSTC_BOOTSTRAP cargo install -q --locked cbindgen --version "$CBINDGEN_VERSION" >&2 \
     || die "cargo install cbindgen failed"
@@ -126,6 +167,6 @@ log "gcc:     $(first_line arm-none-eabi-gcc --version)"
 log "cbindgen: $(first_line cbindgen --version)"
 
 if [ $PRINT_ENV = 1 ]; then
-  printf 'THUMB_RUSTC=%q\nTHUMB_SYSROOT=%q\nTHUMB_LINKER=%q\nTHUMB_LINKER_FLAVOR=%q\n' \
+  printf 'THUMB_KIND=debian\nTHUMB_RUSTC=%q\nTHUMB_SYSROOT=%q\nTHUMB_LINKER=%q\nTHUMB_LINKER_FLAVOR=%q\n' \
     "$THUMB_RUSTC" "$THUMB_SYSROOT" "$THUMB_LINKER" "$THUMB_LINKER_FLAVOR"
 fi

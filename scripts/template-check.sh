@@ -3,10 +3,11 @@
 # it in QEMU (mps2-an386, Cortex-M4F) and check what it prints against the host.
 #
 # A user builds the template with rustup (`rustup target add thumbv7em-none-eabihf`, the
-# default linker rust-lld). This machine cannot add rustup targets, so CI builds it with the
-# fallback toolchain of scripts/firmware.sh: Debian's rustc-web with `-Z build-std` (through
-# the environment only; the template's own files are used unchanged) and rustup's rust-lld
-# (or arm-none-eabi-ld) named as the linker.
+# default linker rust-lld). So does this script when rustup can add the target here
+# (scripts/setup-thumb.sh --rustup); where it cannot, it builds with the fallback toolchain
+# of scripts/firmware.sh: Debian's rustc-web with `-Z build-std` (through the environment
+# only; the template's own files are used unchanged) and rustup's rust-lld (or
+# arm-none-eabi-ld) named as the linker.
 #
 # Checks:
 #  1. the build uses the template's Cargo.lock unchanged (--locked);
@@ -18,7 +19,7 @@
 #
 # Usage: scripts/template-check.sh [--no-setup]
 # Env: TEMPLATE_TARGET_DIR (default examples/firmware-template/target), TEMPLATE_TIMEOUT
-#      (seconds for the QEMU run, default 60), THUMB_CARGO (default Debian's /usr/bin/cargo)
+#      (seconds for the QEMU run, default 60), THUMB_CARGO (default: the toolchain's cargo)
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -36,31 +37,13 @@ done
 log() { echo "template-check: $*" >&2; }
 die() { echo "template-check: ERROR: $*" >&2; exit 1; }
 
-# --- Toolchain (as scripts/firmware.sh) ------------------------------------------------------
-if [ $SETUP = 1 ]; then
-  eval "$("$ROOT/scripts/setup-thumb.sh" --env)"
-else
-  THUMB_RUSTC=/usr/bin/rustc
-  THUMB_LINKER=$(ls "${RUSTUP_HOME:-$HOME/.rustup}"/toolchains/*/lib/rustlib/"$(uname -m)"-unknown-linux-gnu/bin/rust-lld 2>/dev/null | head -1 || true)
-  [ -n "$THUMB_LINKER" ] || THUMB_LINKER=$(command -v arm-none-eabi-ld || true)
-fi
-[ -x "$THUMB_RUSTC" ] || die "$THUMB_RUSTC missing: run scripts/setup-thumb.sh"
-[ -n "$THUMB_LINKER" ] || die "no linker (rust-lld or arm-none-eabi-ld)"
+# --- Toolchain: rustup's if it has the target (the user's path), else Debian's ----------------
+. "$ROOT/scripts/lib/thumb-env.sh"
+thumb_toolchain $SETUP --rustup "$TARGET"
 command -v qemu-system-arm >/dev/null || die "qemu-system-arm missing: run scripts/setup-thumb.sh"
-
-unset RUSTFLAGS CARGO_ENCODED_RUSTFLAGS CARGO_BUILD_RUSTFLAGS CARGO_BUILD_TARGET RUSTDOCFLAGS
 TD=${TEMPLATE_TARGET_DIR:-$TPL/target}
-BUILD_ENV=(
-  RUSTC="$THUMB_RUSTC"
-  RUSTC_BOOTSTRAP=1
-  CARGO_UNSTABLE_BUILD_STD=core,compiler_builtins
-  CARGO_UNSTABLE_BUILD_STD_FEATURES=compiler-builtins-mem
-  CARGO_TARGET_DIR="$TD"
-  CARGO_TARGET_THUMBV7EM_NONE_EABIHF_LINKER="$THUMB_LINKER"
-)
-CARGO=${THUMB_CARGO:-/usr/bin/cargo}
-[ -x "$CARGO" ] || CARGO=$(command -v cargo)
-log "rustc $("$THUMB_RUSTC" -V); linker $THUMB_LINKER"
+thumb_build_env "$TD" "$TARGET"
+log "$THUMB_KIND toolchain: rustc $("$THUMB_RUSTC" -V); linker $THUMB_LINKER"
 
 # --- 1. Build ----------------------------------------------------------------------------------
 (cd "$TPL" && env "${BUILD_ENV[@]}" "$CARGO" build --release --locked)

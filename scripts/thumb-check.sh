@@ -42,23 +42,10 @@ mkdir -p "$TD"
 now_ms() { echo $(( $(date +%s%N) / 1000000 )); }
 fmt_s() { printf '%d.%01d s' $(( $1 / 1000 )) $(( ($1 % 1000) / 100 )); }
 
-# --- Toolchain ------------------------------------------------------------------------------
-if [ $SETUP = 1 ]; then
-  eval "$("$ROOT/scripts/setup-thumb.sh" --env)"
-else
-  THUMB_RUSTC=/usr/bin/rustc
-fi
-[ -x "$THUMB_RUSTC" ] || { echo "thumb-check: $THUMB_RUSTC missing: run scripts/setup-thumb.sh" >&2; exit 1; }
-
-# Host flags must not leak into the thumb builds.
-unset RUSTFLAGS CARGO_ENCODED_RUSTFLAGS CARGO_BUILD_RUSTFLAGS CARGO_BUILD_TARGET RUSTDOCFLAGS
-BUILD_ENV=(
-  RUSTC="$THUMB_RUSTC"
-  RUSTC_BOOTSTRAP=1
-  CARGO_UNSTABLE_BUILD_STD=core,compiler_builtins
-  CARGO_UNSTABLE_BUILD_STD_FEATURES=compiler-builtins-mem
-  CARGO_TARGET_DIR="$TD"
-)
+# --- Toolchain (scripts/lib/thumb-env.sh): Debian's, whose build-std builds only core -------
+. "$ROOT/scripts/lib/thumb-env.sh"
+thumb_toolchain $SETUP
+thumb_build_env "$TD"
 [ -n "${THUMB_RUSTFLAGS:-}" ] && BUILD_ENV+=(RUSTFLAGS="$THUMB_RUSTFLAGS")
 
 # Cargo: Debian's (same version as the compiler and library sources) if it can read our

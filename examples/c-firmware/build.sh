@@ -3,7 +3,8 @@
 #   1. drift: ppoe-ffi/include/ppoe.h equals cbindgen's output for ppoe-ffi/src, and
 #      examples/c-firmware/seed_table.h equals ppoe-build's C table of the seed robot (what
 #      `ppoe table --lang c --scalar both --name SEED` prints);
-#   2. the host C test: ppoe-ffi as a host staticlib, host.c + checks.c compiled with
+#   2. the host C test: ppoe-ffi as a host staticlib (plain `cargo build --release`, linked
+#      with a plain `gcc … libppoe_ffi.a -lm`, as the README documents), host.c + checks.c compiled with
 #      `gcc -std=c99 -Wall -Wextra -Werror -pedantic` (which includes ppoe.h and the seed
 #      table), run: every case and every status code;
 #   3. the C firmware: ppoe-ffi for thumbv7em-none-eabihf (Debian's rustc + build-std, from
@@ -47,18 +48,18 @@ echo "c-firmware: ppoe.h and seed_table.h match their generators"
 
 # --- 2. host C test ------------------------------------------------------------------------
 echo "c-firmware: host C test (gcc ${CFLAGS[*]})"
+# As documented (README "C API"): a plain `cargo build --release` and a plain link line.
 (cd "$FFI" && env -u RUSTC -u RUSTC_BOOTSTRAP -u CARGO_UNSTABLE_BUILD_STD \
-   CARGO_TARGET_DIR="$HOST_TD" CARGO_PROFILE_RELEASE_PANIC=abort \
-   cargo build -q --release --locked --features panic-handler)
+   CARGO_TARGET_DIR="$HOST_TD" cargo build -q --release --locked)
 gcc "${CFLAGS[@]}" -I"$FFI/include" -I"$HERE" -I"$OUT/gen" -o "$OUT/c-api-host-test" \
-  "$HERE/host.c" "$HERE/checks.c" "$HOST_TD/release/libppoe_ffi.a" -lm -Wl,--gc-sections
+  "$HERE/host.c" "$HERE/checks.c" "$HOST_TD/release/libppoe_ffi.a" -lm
 "$OUT/c-api-host-test"
 
 # --- 3. the C firmware ---------------------------------------------------------------------
 echo "c-firmware: ppoe-ffi for thumbv7em-none-eabihf, firmware with arm-none-eabi-gcc"
 # The target dir of the VAR=value environment (examples/firmware's): libcore is shared.
 (cd "$FFI" && env "${ENVV[@]}" \
-   "${FFI_CARGO:-cargo}" build -q --release --locked --target thumbv7em-none-eabihf --features panic-handler)
+   "${FFI_CARGO:-cargo}" build -q --release --locked --target thumbv7em-none-eabihf)
 THUMB_TD=$(for v in "${ENVV[@]}"; do case "$v" in CARGO_TARGET_DIR=*) echo "${v#*=}" ;; esac; done | tail -1)
 THUMB_TD=${THUMB_TD:-$FFI/target}
 ARM=(-mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16)

@@ -7,6 +7,12 @@
 //! pose M of the tip and the joint limits exactly as pytransform3d does, and
 //! writes Rust source with a `pub const` [`ppoe::chain::Chain`].
 //!
+//! It is also the one reader of URDF files for every other host tool: the same parse
+//! gives the kinematics, the limits, the link/joint tree ([`Urdf::tree`]) and each link's
+//! `<visual>`s and materials ([`urdf::Visual`], [`urdf::Material`]) for pictures; and one
+//! pipeline, [`Table`], turns a chain into a table's source (Rust or C, the source hash, the
+//! noise model), for [`Config`] and any other front end alike.
+//!
 //! The screw axes and home poses agree bit for bit with pytransform3d 3.17.0 on every chain
 //! of `test_data/golden/ppoe` (the products are evaluated in numpy/OpenBLAS's order, with its
 //! fused multiply-adds; see `tests/golden.rs`); on another BLAS pytransform3d itself moves
@@ -165,12 +171,14 @@ pub mod error;
 pub mod literal;
 mod math;
 pub mod noise;
+pub mod table;
 pub mod urdf;
 
 pub use chain::{ChainJoint, RobotChain};
 pub use codegen::{Scalar, Source};
 pub use error::{Error, ErrorKind, Position, Result};
 pub use ppoe::chain::JointKind;
+pub use table::{Lang, Table};
 pub use urdf::Urdf;
 
 use std::path::{Path, PathBuf};
@@ -280,41 +288,41 @@ impl Config {
     }
 
     fn const_name(&self) -> String {
-        match &self.name {
-            Some(n) => n.clone(),
-            None => codegen::const_name_from(
-                &self
-                    .urdf
-                    .file_stem()
-                    .map(|s| s.to_string_lossy().into_owned())
-                    .unwrap_or_default(),
-            ),
-        }
+        let stem = self.urdf.file_stem().map(|s| s.to_string_lossy());
+        table::const_name(self.name.as_deref(), &stem.unwrap_or_default())
     }
 
-    /// The generated Rust source.
-    pub fn generate(&self) -> Result<String> {
+    /// The table of [`Config::generate`] or [`Config::generate_c`], through the one
+    /// pipeline ([`Table::generate`]); `noise` says whether the noise model goes in.
+    fn generate_lang(&self, lang: Lang, noise: bool) -> Result<String> {
         let name = self.const_name();
-        codegen::check_const_name(&name).map_err(|e| e.in_file(&self.urdf))?;
         let bytes = self.read()?;
         let chain = self.chain_from(&bytes)?;
-        let source = Source {
-            file_name: self
-                .urdf
-                .file_name()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default(),
-            sha256: codegen::sha256_hex(&bytes),
+        let model = match (&self.noise, noise) {
+            (Some(path), true) => Some((noise::NoiseModel::read(path)?, path)),
+            _ => None,
         };
-        let mut src = codegen::generate(&chain, &name, self.scalar, &source)
-            .map_err(|e| e.in_file(&self.urdf))?;
-        if let Some(path) = &self.noise {
-            let model = noise::NoiseModel::read(path)?;
-            model.check_against(&chain).map_err(|e| e.in_file(path))?;
-            let file = path.file_name().map(|s| s.to_string_lossy().into_owned());
-            src += &noise::generate(&model, &name, self.scalar, &file.unwrap_or_default());
+        let file_name = self.urdf.file_name().map(|s| s.to_string_lossy());
+        Table {
+            chain: &chain,
+            urdf: &bytes,
+            file_name: &file_name.unwrap_or_default(),
+            name: &name,
+            scalar: self.scalar,
+            lang,
+            noise: model
+                .as_ref()
+                .map(|(model, path)| table::Noise { model, path }),
         }
-        Ok(src)
+        .generate()
+        .map_err(|e| e.in_file(&self.urdf))
+    }
+
+    /// The generated Rust source, with the noise model's items if one is set.
+    pub fn generate(&self) -> Result<String> {
+        // A bad name is reported before the files are read.
+        codegen::check_const_name(&self.const_name()).map_err(|e| e.in_file(&self.urdf))?;
+        self.generate_lang(Lang::Rust, true)
     }
 
     /// Generates the source and writes it to `$OUT_DIR/<file_name>` (rewriting the file only
@@ -374,20 +382,12 @@ impl Config {
     /// The generated C header ([`codegen_c::generate`]): the same values as
     /// [`generate`](Config::generate), as `static const` data of the C API (`ppoe.h`).
     ///
+    /// The noise model ([`Config::noise`]) is not read: the C API takes the covariances as
+    /// arguments.
+    ///
     /// # Errors
     /// As [`generate`](Config::generate), and a name that is a C keyword.
     pub fn generate_c(&self) -> Result<String> {
-        let name = self.const_name();
-        let bytes = self.read()?;
-        let chain = self.chain_from(&bytes)?;
-        let file_name = self
-            .urdf
-            .file_name()
-            .map(|s| s.to_string_lossy().into_owned());
-        let source = Source {
-            file_name: file_name.unwrap_or_default(),
-            sha256: codegen::sha256_hex(&bytes),
-        };
-        codegen_c::generate(&chain, &name, self.scalar, &source).map_err(|e| e.in_file(&self.urdf))
+        self.generate_lang(Lang::C, false)
     }
 }

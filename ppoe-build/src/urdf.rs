@@ -1,14 +1,18 @@
 //! URDF parsing: the links and joints of a `<robot>`, with each joint's child-to-parent
 //! transform, axis and limits computed as pytransform3d's `UrdfTransformManager` does.
 //!
-//! What is read (everything else — `<visual>`, `<collision>`, `<inertial>`, `<material>`,
-//! `<transmission>`, `<gazebo>`, `<dynamics>`, `<safety_controller>`, comments, processing
-//! instructions — is ignored):
+//! What is read (everything else — `<collision>`, `<inertial>`, `<transmission>`,
+//! `<gazebo>`, `<dynamics>`, `<safety_controller>`, comments, processing instructions — is
+//! ignored):
 //!
 //! * the root element must be `<robot name="…">`;
 //! * its direct `<link name>` children, then its direct `<joint name type>` children with
 //!   their first `<parent link>`, `<child link>`, `<origin xyz rpy>`, `<axis xyz>`,
-//!   `<limit lower upper>` and `<mimic>` children.
+//!   `<limit lower upper>` and `<mimic>` children;
+//! * for the pictures, each link's `<visual>` children and the robot's top-level
+//!   `<material>`s ([`Visual`], [`Material`]). A malformed visual never fails the parse (a
+//!   table does not depend on it): it is kept as an error in [`Link::visuals`], for the
+//!   tools that draw it to report.
 //!
 //! Element names are matched on their local name, so XML namespaces are ignored (prefixes
 //! must still be declared: roxmltree, like any conforming parser, rejects undeclared ones).
@@ -49,6 +53,12 @@ use crate::error::{Error, ErrorKind, Position, Result};
 use crate::math;
 use roxmltree::{Attribute, Document, Node};
 use std::collections::HashMap;
+
+mod tree;
+mod visual;
+
+pub use tree::Tree;
+pub use visual::{Geometry, Material, Visual};
 
 /// A joint type as written in the URDF.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -96,6 +106,9 @@ pub struct Link {
     pub name: String,
     /// Where the `<link>` element starts.
     pub position: Option<Position>,
+    /// Its `<visual>` children in document order, each as read or the error that makes it
+    /// unusable (malformed numbers, a negative size).
+    pub visuals: Vec<Result<Visual>>,
 }
 
 /// A `<joint>` with its home-pose data.
@@ -142,6 +155,9 @@ pub struct Urdf {
     pub links: Vec<Link>,
     /// The joints in document order.
     pub joints: Vec<Joint>,
+    /// The named materials declared at the top level, in document order, each as read or
+    /// the error that makes it unusable (a malformed colour).
+    pub materials: Vec<Result<Material>>,
 }
 
 impl Urdf {
@@ -331,10 +347,12 @@ impl<'input> Parser<'_, 'input> {
         let (links, link_index) = self.links(root)?;
         let joints = self.joints(root, &link_index)?;
         check_tree(&links, &joints)?;
+        let materials = self.materials(root);
         Ok(Urdf {
             name,
             links,
             joints,
+            materials,
         })
     }
 
@@ -359,9 +377,11 @@ impl<'input> Parser<'_, 'input> {
                 .at(position));
             }
             link_index.insert(link_name.clone(), links.len());
+            let visuals = self.visuals(node, &link_name);
             links.push(Link {
                 name: link_name,
                 position,
+                visuals,
             });
         }
         Ok((links, link_index))
@@ -541,6 +561,16 @@ impl<'input> Parser<'_, 'input> {
 
     /// An optional attribute holding exactly three finite numbers separated by whitespace.
     fn vec3(&self, node: Node<'_, 'input>, name: &str, what: &str) -> Result<Option<[f64; 3]>> {
+        self.numbers::<3>(node, name, what)
+    }
+
+    /// An optional attribute holding exactly `N` finite numbers separated by whitespace.
+    fn numbers<const N: usize>(
+        &self,
+        node: Node<'_, 'input>,
+        name: &str,
+        what: &str,
+    ) -> Result<Option<[f64; N]>> {
         let Some(attr) = attribute(node, name) else {
             return Ok(None);
         };
@@ -548,7 +578,7 @@ impl<'input> Parser<'_, 'input> {
         let value = attr.value();
         let pos = self.value_pos(&attr);
         let context = || format!("{what}: <{element} {name}={}>", shown(value));
-        let mut out = [0.0; 3];
+        let mut out = [0.0; N];
         let mut count = 0;
         for token in value.split_ascii_whitespace() {
             let x: f64 = token.parse().map_err(|_| {
@@ -558,15 +588,15 @@ impl<'input> Parser<'_, 'input> {
                 )
                 .at(pos)
             })?;
-            if count < 3 {
+            if count < N {
                 out[count] = x;
             }
             count += 1;
         }
-        if count != 3 {
+        if count != N {
             return Err(Error::new(
                 ErrorKind::InvalidNumber,
-                format!("{}: expected 3 numbers, found {count}", context()),
+                format!("{}: expected {N} numbers, found {count}", context()),
             )
             .at(pos));
         }

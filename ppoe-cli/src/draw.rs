@@ -135,23 +135,19 @@ pub fn ensure_dir(dir: &Path) -> anyhow::Result<()> {
         .with_context(|| format!("cannot create the output directory {}", dir.display()))
 }
 
-/// The URDF visuals of `robot` (from the bytes already read), meshes looked up beside
+/// The URDF visuals of `robot` (from the URDF already parsed), meshes looked up beside
 /// `urdf_path` when the URDF is a regular file; what is skipped is noted on stderr.
 ///
 /// # Errors
-/// The URDF is not UTF-8, or a `<visual>` element is malformed.
+/// A `<visual>` element is malformed.
 pub fn robot_visuals(robot: &crate::load::Robot, urdf_path: &Path) -> anyhow::Result<Visuals> {
     let name = &robot.source.name;
-    let text =
-        std::str::from_utf8(&robot.source.bytes).with_context(|| format!("{name} is not UTF-8"))?;
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mesh_dir = if robot.source.regular {
         urdf_path.parent()
     } else {
         None
     };
     let (visuals, notices) = Visuals::from_urdf(
-        text,
         &robot.urdf,
         &robot.chain.base,
         &robot.chain.joint_names(),

@@ -266,34 +266,6 @@ pub fn cases(
         .map_err(|e| anyhow::anyhow!("{}: malformed input JSON: {e:#}", input.name))
 }
 
-/// The `NAME_NOISE` (and `NAME_SIGMA2`) items of `ppoe table --noise FILE`, checked
-/// against the chain.
-///
-/// # Errors
-/// An unreadable noise model, one for another chain, or `--lang c` (not supported yet).
-pub fn noise_table(
-    path: &Path,
-    robot: &RobotChain,
-    name: &str,
-    scalar: ppoe_build::Scalar,
-    c: bool,
-) -> anyhow::Result<String> {
-    if c {
-        bail!("--noise is not supported with --lang c yet: the C API takes the covariances as arguments");
-    }
-    let model = NoiseModel::read(path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    model
-        .check_against(robot)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    let file = path.file_name().map(|s| s.to_string_lossy().into_owned());
-    Ok(ppoe_build::noise::generate(
-        &model,
-        name,
-        scalar,
-        &file.unwrap_or_default(),
-    ))
-}
-
 /// The seed robot's covariances from a noise model (`demo --noise`), checked against the
 /// seed table's joint names.
 pub fn seed_noise(path: &Path) -> anyhow::Result<[ppoe::Mat6<f64>; 6]> {

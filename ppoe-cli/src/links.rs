@@ -15,7 +15,6 @@
 use crate::names::shown;
 use ppoe_build::urdf::Joint;
 use ppoe_build::Urdf;
-use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
 
 /// One joint's line (without the tree's prefix).
@@ -40,11 +39,7 @@ fn joint_line(j: &Joint) -> String {
 /// with the joints below it, depth first in document order. Iterative, so chains of any
 /// depth are fine.
 pub fn tree(urdf: &Urdf) -> String {
-    let mut children: HashMap<&str, Vec<&Joint>> = HashMap::new();
-    for j in &urdf.joints {
-        children.entry(j.parent.as_str()).or_default().push(j);
-    }
-    let child_links: HashSet<&str> = urdf.joints.iter().map(|j| j.child.as_str()).collect();
+    let tree = urdf.tree();
     let moving = urdf
         .joints
         .iter()
@@ -56,34 +51,26 @@ pub fn tree(urdf: &Urdf) -> String {
         urdf.links.len(),
         urdf.joints.len()
     );
-    for root in urdf
-        .links
-        .iter()
-        .filter(|l| !child_links.contains(l.name.as_str()))
-    {
+    for root in tree.roots() {
         let _ = writeln!(out, "{}", shown(&root.name));
         // (joint, prefix of its line, connector, prefix of its children)
         let mut stack: Vec<(&Joint, String, &str, String)> = Vec::new();
-        push_children(&mut stack, &children, &root.name, "  ");
+        push_children(&mut stack, tree.children(&root.name), "  ");
         while let Some((j, prefix, connector, below)) = stack.pop() {
             let _ = writeln!(out, "{prefix}{connector}{}", joint_line(j));
-            push_children(&mut stack, &children, &j.child, &below);
+            push_children(&mut stack, tree.children(&j.child), &below);
         }
     }
     out
 }
 
-/// Pushes the child joints of `link` (reversed, so they pop in document order).
+/// Pushes the child joints `kids` of a link (reversed, so they pop in document order).
 fn push_children<'a>(
     stack: &mut Vec<(&'a Joint, String, &'static str, String)>,
-    children: &HashMap<&str, Vec<&'a Joint>>,
-    link: &str,
+    kids: &[&'a Joint],
     prefix: &str,
 ) {
-    let Some(kids) = children.get(link) else {
-        return;
-    };
-    if let [only] = kids.as_slice() {
+    if let [only] = kids {
         stack.push((only, prefix.to_string(), "", prefix.to_string()));
         return;
     }

@@ -599,28 +599,43 @@ fn table(a: &TableArgs) -> anyhow::Result<()> {
         Some(s) if robot.source.regular => s.to_string_lossy().into_owned(),
         _ => robot.urdf.name.clone(),
     };
-    let name = match &a.name {
-        Some(n) => n.clone(),
-        None => ppoe_build::codegen::const_name_from(&stem),
-    };
     let scalar = match a.scalar {
         TableScalar::F32 => ppoe_build::Scalar::F32,
         TableScalar::F64 => ppoe_build::Scalar::F64,
         TableScalar::Both => ppoe_build::Scalar::Both,
     };
-    let source = ppoe_build::Source {
-        file_name: robot.source.file_name.clone(),
-        sha256: ppoe_build::codegen::sha256_hex(&robot.source.bytes),
+    let lang = match a.lang {
+        TableLang::Rust => ppoe_build::Lang::Rust,
+        TableLang::C => ppoe_build::Lang::C,
     };
-    let src = match a.lang {
-        TableLang::Rust => ppoe_build::codegen::generate(&robot.chain, &name, scalar, &source),
-        TableLang::C => ppoe_build::codegen_c::generate(&robot.chain, &name, scalar, &source),
+    if a.noise.is_some() && lang == ppoe_build::Lang::C {
+        anyhow::bail!("--noise is not supported with --lang c yet: the C API takes the covariances as arguments");
     }
-    .map_err(|e| load::in_input(&robot.source.name, &e))?;
-    let src = match &a.noise {
-        Some(p) => src + &fit::noise_table(p, &robot.chain, &name, scalar, a.lang == TableLang::C)?,
-        None => src,
+    let model = match &a.noise {
+        Some(p) => Some((
+            ppoe_build::noise::NoiseModel::read(p)
+                .map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?,
+            p,
+        )),
+        None => None,
     };
+    let src = ppoe_build::Table {
+        chain: &robot.chain,
+        urdf: &robot.source.bytes,
+        file_name: &robot.source.file_name,
+        name: &ppoe_build::table::const_name(a.name.as_deref(), &stem),
+        scalar,
+        lang,
+        noise: model
+            .as_ref()
+            .map(|(model, path)| ppoe_build::table::Noise { model, path }),
+    }
+    .generate()
+    // Errors of the noise model name its file; the others are the URDF's.
+    .map_err(|e| match e.file() {
+        Some(_) => anyhow::anyhow!("{e}"),
+        None => load::in_input(&robot.source.name, &e),
+    })?;
     output::print(src.as_bytes())
 }
 

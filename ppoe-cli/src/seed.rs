@@ -20,7 +20,7 @@ pub const VISUALS_URDF: &str = include_str!("../assets/seed_visuals.urdf");
 pub fn visuals() -> anyhow::Result<Visuals> {
     let urdf = ppoe_build::Urdf::parse(VISUALS_URDF)?;
     let names: Vec<&str> = SEED.joints.iter().map(|j| j.name).collect();
-    let (v, notices) = Visuals::from_urdf(VISUALS_URDF, &urdf, SEED.base, &names, None)?;
+    let (v, notices) = Visuals::from_urdf(&urdf, SEED.base, &names, None)?;
     anyhow::ensure!(notices.is_empty(), "seed visuals: {}", notices.join("; "));
     Ok(v)
 }

@@ -2,7 +2,8 @@
 //! cylinders, boxes and spheres with their `<origin>` and material colours, and meshes
 //! (STL, OBJ) loaded from the URDF's directory (`package://` or relative paths); a mesh
 //! that cannot be found or read (or a COLLADA `.dae`) is skipped with a notice.
-//! Kinematic tables (`ppoe-build`) ignore visuals; only the drawing tools read them.
+//! The `<visual>`s are read by ppoe-build with the rest of the URDF (`Link::visuals`, the
+//! link/joint tree); this file turns them into shapes and places them, and reads no XML.
 //!
 //! Each visual is placed with the product of exponentials: a link below the `k`-th chain
 //! joint is at `T_base←link(θ) = Exp(S₁θ₁)·…·Exp(S_kθ_k)·T_base←link(0)`, where
@@ -10,9 +11,9 @@
 
 use crate::picture::geom::{mul4, Mat4, IDENTITY};
 use crate::picture::{Body, Shape};
-use anyhow::{anyhow, bail, Context};
+use anyhow::{anyhow, bail};
+use ppoe_build::urdf::{Geometry, Material, Tree, Visual};
 use ppoe_build::Urdf;
-use roxmltree::Node;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -37,80 +38,34 @@ pub struct Visuals {
     parts: Vec<Part>,
 }
 
-fn attr_numbers(node: Node<'_, '_>, name: &str, n: usize) -> anyhow::Result<Option<Vec<f64>>> {
-    let Some(text) = node.attribute(name) else {
-        return Ok(None);
-    };
-    let v: Vec<f64> = text
-        .split_whitespace()
-        .map(|s| s.parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| {
-            anyhow!(
-                "<{}> {name}=\"{text}\": expected numbers",
-                node.tag_name().name()
-            )
-        })?;
-    if v.len() != n || !v.iter().all(|x| x.is_finite()) {
-        bail!(
-            "<{}> {name}=\"{text}\": expected {n} finite numbers",
-            node.tag_name().name()
-        );
-    }
-    Ok(Some(v))
+/// A URDF item's error (ppoe-build's, with its line and column) as the command's error.
+fn item_error(e: &ppoe_build::Error) -> anyhow::Error {
+    anyhow!("{e}")
 }
 
-fn child<'a, 'i>(node: Node<'a, 'i>, name: &str) -> Option<Node<'a, 'i>> {
-    node.children().find(|c| c.has_tag_name(name))
+/// The sRGB of a material's `rgba` (components clamped to [0, 1]).
+fn colour(material: &Material) -> Option<[u8; 3]> {
+    let v = material.rgba?;
+    Some([0, 1, 2].map(|k| (v[k].clamp(0.0, 1.0) * 255.0).round() as u8))
 }
 
-/// `<origin xyz rpy>` as a transform: `[Rz(yaw)·Ry(pitch)·Rx(roll), xyz]` (URDF's fixed-axis
-/// roll-pitch-yaw).
-fn origin(node: Option<Node<'_, '_>>) -> anyhow::Result<Mat4> {
-    let Some(node) = node else {
-        return Ok(IDENTITY);
-    };
-    let xyz = attr_numbers(node, "xyz", 3)?.unwrap_or(vec![0.0; 3]);
-    let rpy = attr_numbers(node, "rpy", 3)?.unwrap_or(vec![0.0; 3]);
-    let (sr, cr) = rpy[0].sin_cos();
-    let (sp, cp) = rpy[1].sin_cos();
-    let (sy, cy) = rpy[2].sin_cos();
-    Ok([
-        [
-            cy * cp,
-            cy * sp * sr - sy * cr,
-            cy * sp * cr + sy * sr,
-            xyz[0],
-        ],
-        [
-            sy * cp,
-            sy * sp * sr + cy * cr,
-            sy * sp * cr - cy * sr,
-            xyz[1],
-        ],
-        [-sp, cp * sr, cp * cr, xyz[2]],
-        [0.0, 0.0, 0.0, 1.0],
-    ])
-}
-
-/// The sRGB of `<color rgba>` (components clamped to [0, 1]).
-fn colour(node: Node<'_, '_>) -> anyhow::Result<Option<[u8; 3]>> {
-    let Some(c) = child(node, "color") else {
-        return Ok(None);
-    };
-    Ok(attr_numbers(c, "rgba", 4)?
-        .map(|v| [0, 1, 2].map(|k| (v[k].clamp(0.0, 1.0) * 255.0).round() as u8)))
-}
-
-/// The named materials declared at the robot's top level.
-fn materials(robot: Node<'_, '_>) -> anyhow::Result<HashMap<String, [u8; 3]>> {
+/// The named materials declared at the robot's top level (a later one of the same name
+/// wins).
+fn materials(urdf: &Urdf) -> anyhow::Result<HashMap<&str, [u8; 3]>> {
     let mut out = HashMap::new();
-    for m in robot.children().filter(|c| c.has_tag_name("material")) {
-        if let (Some(name), Some(rgb)) = (m.attribute("name"), colour(m)?) {
-            out.insert(name.to_string(), rgb);
+    for m in &urdf.materials {
+        let m = m.as_ref().map_err(item_error)?;
+        if let (Some(name), Some(rgb)) = (&m.name, colour(m)) {
+            out.insert(name.as_str(), rgb);
         }
     }
     Ok(out)
+}
+
+/// A visual's colour: its material's own colour, else that of the named material.
+fn visual_rgb(v: &Visual, named: &HashMap<&str, [u8; 3]>) -> Option<[u8; 3]> {
+    let m = v.material.as_ref()?;
+    colour(m).or_else(|| m.name.as_deref().and_then(|n| named.get(n).copied()))
 }
 
 /// Where a mesh file named in the URDF may be: `package://pkg/rest` is looked up as `rest`
@@ -195,100 +150,78 @@ fn load_mesh(path: &Path, scale: [f64; 3]) -> anyhow::Result<Shape> {
     })
 }
 
-/// The shape of a `<geometry>`, or a notice why it is skipped.
-fn geometry(node: Node<'_, '_>, dir: Option<&Path>) -> anyhow::Result<Result<Shape, String>> {
-    let Some(g) = node.children().find(|c| c.is_element()) else {
-        return Ok(Err("an empty <geometry>".into()));
-    };
-    let num = |name: &str| -> anyhow::Result<f64> {
-        let v = attr_numbers(g, name, 1)?
-            .ok_or_else(|| anyhow!("<{}> has no {name}", g.tag_name().name()))?;
-        if v[0] < 0.0 {
-            bail!("<{}> {name} is negative", g.tag_name().name());
-        }
-        Ok(v[0])
-    };
-    Ok(Ok(match g.tag_name().name() {
-        "cylinder" => Shape::cylinder(num("radius")?, num("length")?),
-        "sphere" => Shape::sphere(num("radius")?),
-        "box" => {
-            let s = attr_numbers(g, "size", 3)?.ok_or_else(|| anyhow!("<box> has no size"))?;
-            if s.iter().any(|&x| x < 0.0) {
-                bail!("<box> size has a negative side");
-            }
-            Shape::cuboid([s[0], s[1], s[2]])
-        }
-        "mesh" => {
-            let name = g.attribute("filename").unwrap_or_default();
-            let scale = attr_numbers(g, "scale", 3)?.map_or([1.0; 3], |s| [s[0], s[1], s[2]]);
+/// The shape of a geometry, or a notice why it is skipped.
+fn shape(geometry: &Geometry, dir: Option<&Path>) -> Result<Shape, String> {
+    Ok(match geometry {
+        Geometry::Cylinder { radius, length } => Shape::cylinder(*radius, *length),
+        Geometry::Sphere { radius } => Shape::sphere(*radius),
+        Geometry::Box { size } => Shape::cuboid(*size),
+        Geometry::Mesh { filename, scale } => {
             let Some(dir) = dir else {
-                return Ok(Err(format!("mesh '{name}': no directory to look in")));
+                return Err(format!("mesh '{filename}': no directory to look in"));
             };
-            let Some(path) = mesh_candidates(name, dir).into_iter().find(|p| p.is_file()) else {
-                return Ok(Err(format!("mesh '{name}' not found")));
+            let Some(path) = mesh_candidates(filename, dir)
+                .into_iter()
+                .find(|p| p.is_file())
+            else {
+                return Err(format!("mesh '{filename}' not found"));
             };
-            match load_mesh(&path, scale) {
-                Ok(s) => s,
-                Err(e) => return Ok(Err(format!("mesh '{}': {e}", path.display()))),
-            }
+            load_mesh(&path, *scale).map_err(|e| format!("mesh '{}': {e}", path.display()))?
         }
-        other => return Ok(Err(format!("unknown geometry <{other}>"))),
-    }))
+        Geometry::Empty => return Err("an empty <geometry>".into()),
+        Geometry::Other { element } => return Err(format!("unknown geometry <{element}>")),
+    })
 }
 
 /// `T_base←link(0)` and the number of chain joints above `link`, or `None` when the link is
 /// not at or below `base`.
-fn link_home(urdf: &Urdf, base: &str, chain: &[&str], link: &str) -> Option<(Mat4, usize)> {
+fn link_home(tree: &Tree<'_>, base: &str, chain: &[&str], link: &str) -> Option<(Mat4, usize)> {
     let mut t = IDENTITY;
     let mut prefix = 0;
-    let mut cur = link;
-    for _ in 0..=urdf.joints.len() {
-        if cur == base {
-            return Some((t, prefix));
-        }
-        let j = urdf.joints.iter().find(|j| j.child == cur)?;
+    for j in tree.joints_above(link, base)? {
         t = mul4(&j.child2parent, &t);
         if let Some(i) = chain.iter().position(|n| *n == j.name) {
             prefix = prefix.max(i + 1);
         }
-        cur = j.parent.as_str();
     }
-    None
+    Some((t, prefix))
 }
 
 impl Visuals {
-    /// Reads the `<visual>`s of `text` (the URDF already parsed as `urdf`) for the chain
-    /// from `base` through `joints` (moving joints, base to tip); meshes are looked up
-    /// around `dir`. Returns the visuals and the notices of what was skipped.
+    /// The visuals of `urdf`'s links at or below `base`, for the chain through `joints`
+    /// (moving joints, base to tip); meshes are looked up around `dir`. Returns the visuals
+    /// and the notices of what was skipped.
     ///
     /// # Errors
-    /// Malformed XML, or a malformed number, size or colour in a `<visual>` or `<material>`.
+    /// A malformed `<visual>` of a link at or below `base`, or a malformed top-level
+    /// `<material>` (ppoe-build keeps these as the items' errors).
     pub fn from_urdf(
-        text: &str,
         urdf: &Urdf,
         base: &str,
         joints: &[&str],
         dir: Option<&Path>,
     ) -> anyhow::Result<(Visuals, Vec<String>)> {
-        let doc = roxmltree::Document::parse(text).context("the URDF's visuals")?;
-        let robot = doc.root_element();
-        let named = materials(robot)?;
+        let named = materials(urdf)?;
+        let tree = urdf.tree();
+        // Equal geometries share one shape (a mesh is loaded once); the key is the
+        // geometry's `Debug` text, which round-trips every number.
         let mut shapes: HashMap<String, Arc<Shape>> = HashMap::new();
         let (mut parts, mut notices) = (Vec::new(), Vec::new());
-        for link in robot.children().filter(|c| c.has_tag_name("link")) {
-            let name = link.attribute("name").unwrap_or_default();
-            for v in link.children().filter(|c| c.has_tag_name("visual")) {
-                let Some((home, prefix)) = link_home(urdf, base, joints, name) else {
-                    continue;
-                };
-                let Some(g) = child(v, "geometry") else {
+        for link in &urdf.links {
+            let name = &link.name;
+            let Some((home, prefix)) = link_home(&tree, base, joints, name) else {
+                continue;
+            };
+            for v in &link.visuals {
+                let v = v.as_ref().map_err(item_error)?;
+                let Some(g) = &v.geometry else {
                     notices.push(format!("link '{name}': a <visual> without <geometry>"));
                     continue;
                 };
-                let key = doc.input_text()[g.range()].to_string();
+                let key = format!("{g:?}");
                 let shape = match shapes.get(&key) {
                     Some(s) => s.clone(),
-                    None => match geometry(g, dir).with_context(|| format!("link '{name}'"))? {
+                    None => match shape(g, dir) {
                         Ok(s) => shapes.entry(key).or_insert(Arc::new(s)).clone(),
                         Err(why) => {
                             notices.push(format!("link '{name}': {why}, skipped"));
@@ -296,18 +229,11 @@ impl Visuals {
                         }
                     },
                 };
-                let material = child(v, "material");
-                let rgb = match material {
-                    Some(m) => colour(m)?
-                        .or_else(|| m.attribute("name").and_then(|n| named.get(n).copied())),
-                    None => None,
-                };
-                let local = origin(child(v, "origin")).with_context(|| format!("link '{name}'"))?;
                 parts.push(Part {
                     prefix,
-                    home: mul4(&home, &local),
+                    home: mul4(&home, &v.origin),
                     shape,
-                    rgb: rgb.unwrap_or(DEFAULT_RGB),
+                    rgb: visual_rgb(v, &named).unwrap_or(DEFAULT_RGB),
                 });
             }
         }
@@ -336,37 +262,6 @@ mod tests {
     use crate::picture::geom::origin as translation;
     use ppoe::chain::Convention;
 
-    /// `<origin>` as `ppoe-build` reads it for a joint, the independent reference.
-    fn build_origin(xyz: &str, rpy: &str) -> Mat4 {
-        let text = format!(
-            r#"<robot name="r"><link name="a"/><link name="b"/><joint name="j" type="fixed">
-               <origin xyz="{xyz}" rpy="{rpy}"/><parent link="a"/><child link="b"/></joint></robot>"#
-        );
-        Urdf::parse(&text).unwrap().joints[0].child2parent
-    }
-
-    #[test]
-    fn origins_match_ppoe_build() {
-        for (xyz, rpy) in [
-            ("0 0 0", "0 0 0"),
-            ("0.1 -0.2 0.3", "0.3 -1.2 2.5"),
-            ("1 2 3", "1.570796 0 -1.570796"),
-        ] {
-            let text = format!(r#"<origin xyz="{xyz}" rpy="{rpy}"/>"#);
-            let doc = roxmltree::Document::parse(&text).unwrap();
-            let ours = origin(Some(doc.root_element())).unwrap();
-            let want = build_origin(xyz, rpy);
-            for i in 0..4 {
-                for j in 0..4 {
-                    assert!(
-                        (ours[i][j] - want[i][j]).abs() < 1e-15,
-                        "{xyz} {rpy}: {ours:?} vs {want:?}"
-                    );
-                }
-            }
-        }
-    }
-
     #[test]
     fn bad_visual_numbers_are_errors() {
         for geometry in [
@@ -380,11 +275,19 @@ mod tests {
                 r#"<robot name="r"><link name="a"><visual><geometry>{geometry}</geometry></visual></link></robot>"#
             );
             let urdf = Urdf::parse(&text).unwrap();
-            let err = Visuals::from_urdf(&text, &urdf, "a", &[], None).unwrap_err();
+            let err = Visuals::from_urdf(&urdf, "a", &[], None).unwrap_err();
             assert!(
                 format!("{err:#}").contains("link 'a'"),
                 "{geometry}: {err:#}"
             );
+            // Only the links drawn count: below another base the bad visual is not read.
+            let text = format!(
+                r#"<robot name="r"><link name="a"><visual><geometry>{geometry}</geometry></visual></link>
+                <link name="b"/><joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint></robot>"#
+            );
+            let urdf = Urdf::parse(&text).unwrap();
+            let (v, notices) = Visuals::from_urdf(&urdf, "b", &[], None).unwrap();
+            assert!(v.parts.is_empty() && notices.is_empty(), "{geometry}");
         }
     }
 

@@ -2,7 +2,7 @@
 //! rigid forward kinematics and the chain check, in f32 and f64, on plain C types.
 //!
 //! The header is `include/ppoe.h` (generated from this file by cbindgen, see
-//! `cbindgen.toml`; `ppoe-ffi/check.sh` fails if the committed header differs from what
+//! `cbindgen.toml`; `examples/c-firmware/build.sh` fails if the committed header differs from what
 //! cbindgen produces). Robot tables for it: `ppoe table --lang c` or
 //! `ppoe_build::Config::generate_c`.
 //!
@@ -178,3 +178,12 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
     #[allow(clippy::empty_loop)]
     loop {}
 }
+
+/// The unwinder's personality routine, which the host's precompiled `core` refers to even
+/// when this library is built with `panic = "abort"` (its profiles). Nothing here unwinds,
+/// so it is never called; defining it lets a C program link the static library with a
+/// plain `cc main.c libppoe_ffi.a -lm`, without `--gc-sections`. Bare-metal targets build
+/// `core` with `panic = "abort"` and have no such reference.
+#[cfg(all(feature = "panic-handler", not(target_os = "none")))]
+#[no_mangle]
+pub extern "C" fn rust_eh_personality() {}

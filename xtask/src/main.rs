@@ -47,6 +47,57 @@ const TASKS: &[Task] = &[
                instruction count; --no-setup",
     },
     Task {
+        name: "template",
+        command: &["bash", "scripts/template-check.sh"],
+        help: "build the firmware template (rustup's toolchain if it can add the target, \
+               else Debian's), run it in QEMU, compare with the host; --no-setup",
+    },
+    Task {
+        name: "setup-thumb",
+        command: &["bash", "scripts/setup-thumb.sh"],
+        help: "install what the bare-metal builds need (Debian's rustc-web, QEMU, Arm GCC, \
+               cbindgen); --env, --no-install, --rustup TARGET",
+    },
+    Task {
+        name: "deps-rule",
+        command: &["bash", "scripts/deps-rule.sh"],
+        help: "the core crate's direct normal dependencies are exactly approx, heapless, \
+               libm and num-traits",
+    },
+    Task {
+        name: "msrv",
+        command: &["bash", "scripts/msrv.sh"],
+        help: "build and test with the declared minimum Rust version (rust-version)",
+    },
+    Task {
+        name: "publish-check",
+        command: &["bash", "scripts/publish-check.sh"],
+        help: "package every publishable crate and run the packaged core crate's tests",
+    },
+    Task {
+        name: "features",
+        command: &["bash", "scripts/features-check.sh"],
+        help: "each optional feature of the core crate on its own, its tests, and the \
+               no_std ones for thumbv7em",
+    },
+    Task {
+        name: "demo",
+        command: &["bash", "scripts/demo-check.sh"],
+        help: "the README's main command (the seed example) end to end; its pictures exist",
+    },
+    Task {
+        name: "html-check",
+        command: &["bash", "scripts/html-check.sh"],
+        help: "the HTML views in headless Chromium: the robot and the surface are drawn \
+               (installs Chromium if missing)",
+    },
+    Task {
+        name: "python",
+        command: &["bash", "scripts/python-check.sh"],
+        help: "the Python package: fresh venv, maturin wheel, its pytest suite and \
+               pytransform3d 3.17.0's own uncertainty tests against it (needs PyPI)",
+    },
+    Task {
         name: "fuzz-smoke",
         command: &["bash", "scripts/fuzz-smoke.sh"],
         help: "every fuzz target from the seed corpus, 30 s each (FUZZ_SECONDS, \
@@ -205,5 +256,27 @@ mod tests {
         ] {
             assert!(names.contains(wanted), "no task {wanted}");
         }
+    }
+
+    /// Every script `.ci/run` calls is a task too, so what CI runs can be run alone by name.
+    #[test]
+    fn every_ci_script_is_a_task() {
+        let ci = std::fs::read_to_string(root().join(".ci/run")).expect(".ci/run");
+        let tasks: Vec<String> = TASKS.iter().map(|t| t.command.join(" ")).collect();
+        let mut seen = 0;
+        for word in ci.split(|c: char| c.is_whitespace() || c == '"') {
+            let Some(script) = word.strip_prefix("$ROOT/") else {
+                continue;
+            };
+            seen += 1;
+            assert!(
+                tasks.iter().any(|c| c.contains(script)),
+                ".ci/run calls {script}, which no xtask task runs"
+            );
+        }
+        assert!(
+            seen >= 5,
+            ".ci/run names only {seen} scripts: the parse is wrong"
+        );
     }
 }

@@ -1,0 +1,155 @@
+"""``ProbabilisticRobotKinematics`` against pytransform3d's example class, and its batch
+form against the loop of single calls."""
+
+import numpy as np
+import pytest
+
+import ppoe
+from conftest import SEED_JOINTS
+
+TOL = 1e-12
+
+
+def err(ours, theirs):
+    return np.max(np.abs(ours - theirs)) / max(1.0, np.max(np.abs(theirs)))
+
+
+@pytest.fixture(scope="module")
+def robots(seed_urdf, oracle_module):
+    ours = {
+        c: ppoe.ProbabilisticRobotKinematics(seed_urdf, "tcp", "linkmount", SEED_JOINTS, convention=c)
+        for c in ("pytransform3d", "right", "left")
+    }
+    oracle = oracle_module.ProbabilisticChain(seed_urdf, "tcp", "linkmount", SEED_JOINTS)
+    return ours, oracle
+
+
+def random_case(rng, n=6):
+    thetas = rng.uniform(-2.5, 2.5, n)  # beyond the seed's limits of +-1 sometimes
+    a = rng.standard_normal((n, 6, 6)) * 0.1
+    return thetas, a @ np.transpose(a, (0, 2, 1))
+
+
+def test_home_data_equal_the_example(robots):
+    ours, oracle = robots
+    r = ours["pytransform3d"]
+    assert err(r.screw_axes_home, oracle.screw_axes) == 0.0
+    assert err(r.ee2base_home, oracle.home) == 0.0
+    np.testing.assert_array_equal(r.joint_limits, oracle.limits)
+
+
+def test_seed_example_in_the_compat_convention(robots, seed_covs):
+    ours, oracle = robots
+    thetas = -0.5 * np.array([1, 1, 1, 0, 1, 0])
+    t, c = ours["pytransform3d"].probabilistic_forward_kinematics(thetas, seed_covs)
+    _, rt, rc, _, _ = oracle.evaluate(thetas, seed_covs)
+    assert t.shape == (4, 4) and c.shape == (6, 6)
+    assert err(t, rt) <= TOL and err(c, rc) <= TOL
+
+
+def test_every_convention_against_the_oracle(robots):
+    ours, oracle = robots
+    rng = np.random.default_rng(1)
+    for _ in range(300):
+        thetas, covs = random_case(rng)
+        _, rt, compat, right, left = oracle.evaluate(thetas, covs)
+        for conv, want in (("pytransform3d", compat), ("right", right), ("left", left)):
+            t, c = ours[conv].probabilistic_forward_kinematics(thetas, covs)
+            assert err(t, rt) <= TOL and err(c, want) <= TOL, conv
+
+
+def test_integer_thetas_are_promoted(robots, seed_covs):
+    r = robots[0]["right"]
+    a = r.probabilistic_forward_kinematics(np.array([1, 1, 1, 0, 1, 0]), seed_covs)
+    b = r.probabilistic_forward_kinematics(np.array([1.0, 1, 1, 0, 1, 0]), seed_covs)
+    np.testing.assert_array_equal(a[0], b[0])
+    np.testing.assert_array_equal(a[1], b[1])
+
+
+@pytest.mark.parametrize("conv", ["pytransform3d", "right", "left"])
+def test_batch_equals_loop_exactly(robots, conv):
+    r = robots[0][conv]
+    rng = np.random.default_rng(2)
+    thetas = rng.uniform(-2, 2, (64, 6))
+    shared = random_case(rng)[1]
+    per = np.array([random_case(rng)[1] for _ in range(64)])
+    t, c = r.probabilistic_forward_kinematics(thetas, shared)
+    assert t.shape == (64, 4, 4) and c.shape == (64, 6, 6)
+    tp, cp = r.probabilistic_forward_kinematics(thetas, per)
+    fk = r.forward_kinematics(thetas)
+    assert fk.shape == (64, 4, 4)
+    for i in range(64):
+        ts, cs = r.probabilistic_forward_kinematics(thetas[i], shared)
+        np.testing.assert_array_equal(t[i], ts)
+        np.testing.assert_array_equal(c[i], cs)
+        ts, cs = r.probabilistic_forward_kinematics(thetas[i], per[i])
+        np.testing.assert_array_equal(tp[i], ts)
+        np.testing.assert_array_equal(cp[i], cs)
+        np.testing.assert_array_equal(fk[i], r.forward_kinematics(thetas[i]))
+
+
+def test_forward_kinematics_is_the_mean(robots):
+    ours, oracle = robots
+    rng = np.random.default_rng(3)
+    for _ in range(50):
+        thetas, covs = random_case(rng)
+        _, rt, _, _, _ = oracle.evaluate(thetas, covs)
+        assert err(ours["right"].forward_kinematics(thetas), rt) <= TOL
+
+
+def test_empty_batch(robots, seed_covs):
+    t, c = robots[0]["right"].probabilistic_forward_kinematics(np.zeros((0, 6)), seed_covs)
+    assert t.shape == (0, 4, 4) and c.shape == (0, 6, 6)
+
+
+def test_attributes_are_read_only(robots):
+    r = robots[0]["right"]
+    with pytest.raises(ValueError):
+        r.joint_limits[0, 0] = 5.0
+
+
+F32_TOL = 1e-5  # the bound of the repository's f32 golden PPOE tests against the oracle
+
+
+@pytest.fixture(scope="module")
+def robots32(seed_urdf):
+    return {
+        c: ppoe.ProbabilisticRobotKinematics(
+            seed_urdf, "tcp", "linkmount", SEED_JOINTS, convention=c, dtype=np.float32
+        )
+        for c in ("pytransform3d", "right", "left")
+    }
+
+
+def test_float32_against_the_oracle(robots, robots32):
+    _, oracle = robots
+    rng = np.random.default_rng(4)
+    for _ in range(200):
+        thetas, covs = random_case(rng)
+        _, rt, compat, right, left = oracle.evaluate(thetas, covs)
+        for conv, want in (("pytransform3d", compat), ("right", right), ("left", left)):
+            t, c = robots32[conv].probabilistic_forward_kinematics(thetas, covs)
+            assert t.dtype == c.dtype == np.float32
+            assert err(t, rt) <= F32_TOL and err(c, want) <= F32_TOL, conv
+
+
+def test_float32_batch_equals_loop_exactly(robots32):
+    r = robots32["right"]
+    rng = np.random.default_rng(5)
+    thetas = rng.uniform(-2, 2, (32, 6))
+    covs = random_case(rng)[1]
+    t, c = r.probabilistic_forward_kinematics(thetas, covs)
+    fk = r.forward_kinematics(thetas)
+    assert fk.dtype == np.float32
+    for i in range(32):
+        ts, cs = r.probabilistic_forward_kinematics(thetas[i], covs)
+        np.testing.assert_array_equal(t[i], ts)
+        np.testing.assert_array_equal(c[i], cs)
+        np.testing.assert_array_equal(fk[i], r.forward_kinematics(thetas[i]))
+
+
+def test_float32_rejects_values_beyond_its_range(robots32, seed_covs):
+    with pytest.raises(ValueError, match="NaN or infinity"):
+        robots32["right"].probabilistic_forward_kinematics(np.full(6, 1e300), seed_covs)
+    with pytest.raises(ValueError, match="dtype"):
+        ppoe.ProbabilisticRobotKinematics("", "tcp", "linkmount", SEED_JOINTS, dtype=np.int32)
