@@ -2,9 +2,12 @@
 //! interleaved round by round, so that load from other processes hits both alike; the
 //! median over rounds of each round's ratio is printed. Also the time of the 7th joint
 //! relative to 6 (the marginal cost of one joint), and every lane width the schedule has
-//! (`ChainView::ppoe_with_lanes`: 1, 2, 4).
+//! (1, 2, 4) when built with `--cfg ppoe_bench_lanes`, which alone has the door
+//! `ChainView::ppoe_with_lanes` (the schedule is private; without the cfg only the
+//! target's own width, lanes 0, is timed).
 //!
-//! `cargo bench --bench lanes_ratio` (optional args: rounds, calls per batch).
+//! `RUSTFLAGS="--cfg ppoe_bench_lanes" cargo bench --bench lanes_ratio` (optional args:
+//! rounds, calls per batch).
 //! `LANES_RATIO_CALLGRIND=<case>/<f32|f64>/<lanes> valgrind --tool=callgrind
 //! --collect-atstart=no --toggle-collect='*callgrind_region*' <binary>` counts the
 //! instructions of 1000 calls of one case (`LANES_RATIO_CALLGRIND=list` lists them;
@@ -32,10 +35,16 @@ fn call<T: Real>(c: &Case<T>, lanes: usize) -> ppoe::chain::UncertainPose<T> {
         home: c.1,
     };
     let th = black_box(&c.2[..]);
+    #[cfg(ppoe_bench_lanes)]
     let r = if lanes == 0 {
         chain.ppoe(th, &c.3, Convention::Right)
     } else {
         chain.ppoe_with_lanes(th, &c.3, Convention::Right, lanes)
+    };
+    #[cfg(not(ppoe_bench_lanes))]
+    let r = {
+        assert_eq!(lanes, 0, "other widths need --cfg ppoe_bench_lanes");
+        chain.ppoe(th, &c.3, Convention::Right)
     };
     r.expect("lengths")
 }
@@ -55,7 +64,11 @@ fn median(v: &mut [f64]) -> f64 {
 }
 
 const CASES: [&str; 4] = ["seed", "chain6", "chain7", "chain8"];
+/// Lane widths timed: 0 = the target's choice (`ChainView::ppoe`).
+#[cfg(ppoe_bench_lanes)]
 const LANES: [usize; 4] = [0, 1, 2, 4];
+#[cfg(not(ppoe_bench_lanes))]
+const LANES: [usize; 1] = [0];
 
 /// Interleaved rounds: every (case, scalar, lanes) batch once per round, then medians.
 fn ratios(rounds: usize, k: usize) {

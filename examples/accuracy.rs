@@ -673,7 +673,7 @@ fn write_part3(d: &mut Doc, p3: &[F32Row]) {
          PPOE computed in f32, against the same computation in f64 from the unrounded \
          inputs — so the numbers include the effect of rounding the inputs. Right \
          convention; pose = the 4×4 matrix. Cases with any |θ| > 10 rad are skipped, as in \
-         `tests/golden_ppoe.rs` (rounding θ = 1000 rad to f32 alone moves it by ~3·10⁻⁵). \
+         `tests/ppoe_golden.rs` (rounding θ = 1000 rad to f32 alone moves it by ~3·10⁻⁵). \
          Deterministic: no sampling. The \
          skipped cases are mostly the `large` and `outside` joint values of the golden \
          generator (most of which the limits clip anyway); the medians include the cases \

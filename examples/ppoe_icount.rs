@@ -1,4 +1,4 @@
-//! Instruction-count harness of the PPOE schedule (`src/transport.rs`), for callgrind:
+//! Instruction-count harness of the PPOE schedule (`src/ppoe/schedule.rs`), for callgrind:
 //! deterministic figures on a loaded or noisy machine, where timings mean nothing.
 //!
 //! ```text

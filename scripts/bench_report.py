@@ -638,7 +638,7 @@ def render(d):
         e = fw["op_insns"].get("se3_exp", {})
         pi = fw["ppoe_insns"]
         p("- M4F f32 PPOE: %d instructions, ≈ %.0f per joint (one f32 `se3::exp` alone: %.0f). The M4F"
-          " has no SIMD for floats, so the PPOE's lane width (private, `lanes` in src/transport.rs) is 1"
+          " has no SIMD for floats, so the PPOE's lane width (private, `lanes` in src/ppoe/schedule.rs) is 1"
           " there: one structured transport at"
           " a time, the same operations as on the host." % (pi["f32"], pi["f32"] / 6, e.get("f32", 0)))
         for f, calls in (fw.get("direct_calls") or {}).items():
@@ -686,7 +686,7 @@ def render(d):
           " tolerances; `git log` has the before/after figures): accumulation in the tip frame from"
           " the tip backwards (no transport after the loop, lever arms from each joint to the tip),"
           " a shear-first structured transport accumulated into one triangle (no 6×6 temporaries),"
-          " independent transports packed into SIMD lanes (the private lane width, `lanes` in src/transport.rs: one"
+          " independent transports packed into SIMD lanes (the private lane width, `lanes` in src/ppoe/schedule.rs: one"
           " 128-bit register on SSE2/NEON, 2 f64 or 4 f32 lanes), the joints taken in groups whose congruences and covariances are"
           " gathered into lanes straight from registers (a queue in memory made the gathers wait on"
           " store forwarding), per-joint displacement constants computed once (`JointConstants`:"
@@ -700,7 +700,7 @@ def render(d):
           " only the covariance entries the transport reads (no change). Two f32 lanes, the former"
           " choice, left the other half of each 4-lane SSE register unset: on AMD EPYC the"
           " garbage there underflowed into subnormals, so f32 now fills the register."
-          " `cargo bench --bench lanes_ratio` times every lane width in one process, and"
+          " `RUSTFLAGS=\"--cfg ppoe_bench_lanes\" cargo bench --bench lanes_ratio` times every lane width in one process, and"
           " `LANES_RATIO_FTZ=1` (flush-to-zero) shows what subnormals cost: when the two-lane"
           " schedule was replaced, on the AMD EPYC of this report, with flush-to-zero its"
           " f32 PPOE took 222 ns instead of 307 ns.")

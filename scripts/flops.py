@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Floating-point operation count of ppoe's PPOE (ChainView::ppoe, Convention::Right).
 
-A hand count of the source as written (src/transport.rs `ppoe_lanes`, `sum_lanes`,
-`Congruence::of_inverse`, `transport_lower`, `sandwich_add`, `cross_component`;
-src/joint.rs `JointConstants::displacement`; src/se3.rs `Transform::compose`), for joints
+A hand count of the source as written (src/ppoe/schedule.rs `ppoe_lanes`, `sum_lanes`;
+src/se3/congruence.rs `Congruence::of_inverse`, `transport_lower`, `sandwich_add`,
+`cross_component`; src/joint.rs `JointConstants::displacement`; src/se3/mod.rs
+`Transform::compose`), for joints
 with their displacement constants (ppoe-build's tables, `Joint::from_f64`,
 `Joint::prepared`), counting multiplies and adds/subtracts separately (negations,
 transposes, clipping compares, copies and the lane packing: 0), and division, square root
@@ -65,7 +66,7 @@ def count(n, lanes=2):
     per_joint = add(p["exp"], p["compose"], p["transport"])
     # After the loop: the W lanes of the 36 accumulated entries are summed (W - 1 adds
     # each). A last incomplete group of `filled` joints runs packed, its empty lanes counted
-    # as computed, only when W > 2 and it fills more than half of them (src/transport.rs,
+    # as computed, only when W > 2 and it fills more than half of them (src/ppoe/schedule.rs,
     # `Sums::add`); otherwise its joints run one lane at a time and nothing is padded.
     filled = n % lanes
     pad = lanes - filled if filled and lanes > 2 and 2 * filled > lanes else 0

@@ -3,7 +3,7 @@
 //! joint's right perturbation, base-frame screw coordinates, rotation first).
 //!
 //! ```
-//! use ppoe::joint::{Joint, JointKind};
+//! use ppoe::chain::{Joint, JointKind};
 //! use ppoe::Vec3;
 //! // Revolute about z through (1, 0, 0): screw axis (ŝ, q × ŝ) = (0, 0, 1, 0, −1, 0).
 //! let j = Joint::new("j", JointKind::Revolute, [0., 0., 1., 0., -1., 0.], -4.0, 4.0);
@@ -208,7 +208,7 @@ impl<T: Real> Joint<T> {
     /// ([`ChainView::check`](crate::chain::ChainView::check) does).
     ///
     /// ```
-    /// use ppoe::joint::{Joint, JointKind};
+    /// use ppoe::chain::{Joint, JointKind};
     /// // A prismatic joint along y with a 0.3 m stroke.
     /// const SLIDE: Joint<f64> =
     ///     Joint::new("slide", JointKind::Prismatic, [0., 0., 0., 0., 1., 0.], 0.0, 0.3);
@@ -272,7 +272,7 @@ impl<T: Real> Joint<T> {
     /// kept: such a joint stays on the per-call path, whose result is the same.
     ///
     /// ```
-    /// use ppoe::joint::{Joint, JointKind};
+    /// use ppoe::chain::{Joint, JointKind};
     /// let j = Joint::new("j", JointKind::Revolute, [0., 1., 0., 0., 0., 0.5], -3.0, 3.0);
     /// assert!(j.constants().is_none()); // `new` is `const`: it cannot compute them
     /// let p = j.prepared();
@@ -367,7 +367,7 @@ impl<T: Real> Joint<T> {
 /// is the right perturbation ξ = S·δ of the joint's displacement.
 ///
 /// ```
-/// use ppoe::{joint::screw_noise, Vector};
+/// use ppoe::{chain::screw_noise, Vector};
 /// // σ = 0.01 rad on a joint about z through (1, 0, 0): S = (0, 0, 1, 0, −1, 0).
 /// let c = screw_noise(&Vector([0., 0., 1., 0., -1., 0.]), 1e-4);
 /// assert_eq!(c.0[2][2], 1e-4); // yaw variance σ²
@@ -385,7 +385,7 @@ pub fn screw_noise<T: Real>(screw: &Vec6<T>, sigma2: T) -> Mat6<T> {
 /// with `pivot = 0` and `cov_omega = 0.05·e eᵀ` for a base axis e.
 ///
 /// ```
-/// use ppoe::{joint::bending_noise, Mat3, Vec3};
+/// use ppoe::{chain::bending_noise, Mat3, Vec3};
 /// // Bending about the base x axis (0.05 rad²) at a pivot 1 m up the z axis: a rotation
 /// // ω about x there is the twist (ω, pivot × ω) = (ω, 0, 0, 0, ω, 0).
 /// let cov_omega = Mat3::from_rows([[0.05, 0.0, 0.0], [0.0; 3], [0.0; 3]]);

@@ -27,8 +27,7 @@
 //! | [`rotation_forms`] | quaternions `[w, x, y, z]` and URDF roll-pitch-yaw to and from rotations |
 //! | [`se3`] | rigid transforms: exp, log, adjoint, Jacobians, screw axes |
 //! | [`uncertainty`] | uncertain transforms: concatenation, inversion, fusion, estimation |
-//! | [`joint`] | the joint model: kind, screw axis, limits, displacement, joint noise |
-//! | [`chain`] | kinematic chains: forward kinematics, Jacobians, checks, and the PPOE |
+//! | [`chain`] | the joint model, kinematic chains (forward kinematics, Jacobians, checks) and the PPOE |
 //! | [`surface`] | equiprobable surfaces of an uncertain tool position, for drawing |
 //! | [`error`] | the error type of the checked entry points |
 //! | [`interop`] | ROS covariance order; optional `mint`, `nalgebra`, `serde`, `defmt`, `arbitrary` support |
@@ -71,30 +70,21 @@ pub mod chain;
 mod checks;
 pub mod error;
 pub mod interop;
-pub mod joint;
+mod joint;
+mod kinematics;
 pub mod linalg;
 mod ppoe;
-pub mod rank1;
 pub mod rotation_forms;
 pub mod scalar;
 pub mod se3;
 pub mod so3;
 pub mod surface;
-mod transport;
 pub mod uncertainty;
 
-/// The former name of [`surface`] (which also held [`SymmetricEigen`], now in
-/// [`linalg`]): the same items under their old paths.
-#[deprecated(
-    note = "renamed: the surfaces are in `ppoe::surface`, the eigen-solver in `ppoe::linalg`"
-)]
-pub mod ellipsoid {
-    pub use crate::linalg::{SymmetricEigen, MAX_SWEEPS};
-    pub use crate::surface::*;
-}
-
+// The types nearly every call names, also at the root. The rest of `linalg` (the
+// eigen-solver, Cholesky) has one door, `ppoe::linalg`.
 pub use error::Error;
-pub use linalg::{Mat3, Mat6, Matrix, SymmetricEigen, Vec3, Vec6, Vector};
+pub use linalg::{Mat3, Mat6, Matrix, Vec3, Vec6, Vector};
 pub use scalar::Real;
 pub use se3::Transform;
 

@@ -20,9 +20,8 @@
 //! approx::assert_relative_eq!(back, right, epsilon = 1e-18, max_relative = 1e-12);
 //! ```
 
-use crate::ellipsoid::SymmetricEigen;
 use crate::error::Error;
-use crate::linalg::{Mat3, Mat6, Matrix};
+use crate::linalg::{Mat3, Mat6, Matrix, SymmetricEigen};
 use crate::scalar::Real;
 use crate::se3::Transform;
 
@@ -250,8 +249,17 @@ pub fn invert<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> (Transform<T>, Mat
     (inv, inv.transport_covariance(cov))
 }
 
-/// Checks a covariance: finite, symmetric within `T::TOL`·max(1, ‖Σ‖_max) and positive
-/// semi-definite within `T::TOL`·‖Σ‖_max (no eigenvalue below −tol·‖Σ‖_max).
+/// Checks a covariance: finite, symmetric within `T::TOL`·‖Σ‖_max and positive
+/// semi-definite within `T::TOL`·‖Σ‖_max (no eigenvalue below −tol·‖Σ‖_max), where
+/// ‖Σ‖_max is the largest |element| and `T::TOL` = √ε (1.5·10⁻⁸ in f64, 3.5·10⁻⁴ in f32).
+///
+/// Both tolerances are relative to the matrix's own scale, so the check means the same
+/// for a covariance of 10⁻⁸ rad² as for one of 10⁴ mm²: symmetric means
+/// `max|Σᵢⱼ − Σⱼᵢ| ≤ tol·‖Σ‖_max`, which rounding (a few ε·‖Σ‖_max) always meets and a
+/// matrix that is antisymmetric by a fraction of its own scale never does. This is the
+/// one covariance check of the workspace: the checked PPOE (also the C API's), fusion,
+/// the `serde` input, and the host tools' noise files, measurement covariances and
+/// `eval` inputs all call it.
 ///
 /// Method: symmetry element-wise; PSD by a Cholesky factorisation of
 /// `Σ/‖Σ‖_max + tol·I`, which exists iff the smallest eigenvalue of Σ exceeds
@@ -267,7 +275,7 @@ pub fn check_covariance<T: Real, const N: usize>(cov: &Matrix<T, N, N>) -> Resul
         return Err(Error::NonFinite);
     }
     let scale = cov.amax();
-    if cov.asymmetry() > T::TOL * scale.max(T::ONE) {
+    if cov.asymmetry() > T::TOL * scale {
         return Err(Error::NotSymmetric);
     }
     if scale == T::ZERO {

@@ -10,7 +10,7 @@
 //! `max|a − b| / max(1, max|b|)`), f32 to 1e-5 (well-conditioned) or, for the
 //! ill-conditioned covariances, within 16× of the distance by which rounding the inputs
 //! to f32 moves the f64 answer (the f32 problem's own condition; the criterion of
-//! `tests/robustness_fusion.rs`: the f32 result solves a problem perturbed by rounding
+//! `tests/fusion_robustness.rs`: the f32 result solves a problem perturbed by rounding
 //! of that size, plus its own arithmetic's rounding at each step). Independently of the
 //! reference, each converged f64 mean must be a local minimum of the cost evaluated
 //! here from its definition.

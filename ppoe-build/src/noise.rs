@@ -263,4 +263,25 @@ mod tests {
         }
         assert!(src.contains("\\u{a}fn injected() {}"), "{src}");
     }
+
+    /// Issue #26 item 4's matrix, antisymmetric by its own scale of 10⁻⁸ (which an
+    /// absolute tolerance of 1.5·10⁻⁸ let through), is rejected, naming the joint.
+    #[test]
+    fn rejects_asymmetry_relative_to_scale() {
+        let mut c = [[0.0; 6]; 6];
+        for (i, row) in c.iter_mut().enumerate() {
+            row[i] = 1e-8;
+        }
+        c[0][1] = 5e-9;
+        c[1][0] = -5e-9;
+        let text = serde_json::json!({"joints": [{"name": "a", "cov": c}]}).to_string();
+        let e = NoiseModel::parse(&text).unwrap_err().to_string();
+        assert!(
+            e.contains("joint 0 ('a') cov") && e.contains("not symmetric"),
+            "{e}"
+        );
+        c[1][0] = 5e-9;
+        let text = serde_json::json!({"joints": [{"name": "a", "cov": c}]}).to_string();
+        assert!(NoiseModel::parse(&text).is_ok());
+    }
 }

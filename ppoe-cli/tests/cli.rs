@@ -324,6 +324,17 @@ fn error_not_psd_names_case_and_joint() {
     let mut asym = case.clone();
     asym["covs"][0][0][1] = json!(0.01);
     eval_seed_err(&seed_input(&asym), &["case 0, joint 0", "symmetric"]);
+    // Issue #26 item 4: antisymmetric by its own scale of 1e-8 (an absolute tolerance of
+    // 1.5e-8 let it through).
+    let mut small = case.clone();
+    for i in 0..6 {
+        for j in 0..6 {
+            small["covs"][4][i][j] = json!(if i == j { 1e-8 } else { 0.0 });
+        }
+    }
+    small["covs"][4][0][1] = json!(5e-9);
+    small["covs"][4][1][0] = json!(-5e-9);
+    eval_seed_err(&seed_input(&small), &["case 0, joint 4", "not symmetric"]);
 }
 
 #[test]

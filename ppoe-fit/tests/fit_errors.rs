@@ -59,6 +59,37 @@ fn malformed_samples_name_the_sample() {
         &mut |_, _| {},
     );
     assert!(matches!(e, Err(FitError::BadMeasurementCov(_))));
+    // Issue #26 item 4: antisymmetric by its own scale of 1e-8 (an absolute tolerance of
+    // 1.5e-8 let it through); the same matrix made symmetric is accepted.
+    let mut small = [[0.0; 6]; 6];
+    for (i, row) in small.iter_mut().enumerate() {
+        row[i] = 1e-8;
+    }
+    small[0][1] = 5e-9;
+    small[1][0] = -5e-9;
+    let e = fit(
+        &joints,
+        &home,
+        &good,
+        Some(&small),
+        Model::Joint,
+        &mut |_, _| {},
+    );
+    assert!(
+        matches!(&e, Err(FitError::BadMeasurementCov(why)) if why.contains("symmetric")),
+        "{:?}",
+        e.err()
+    );
+    small[1][0] = 5e-9;
+    let e = fit(
+        &joints,
+        &home,
+        &good,
+        Some(&small),
+        Model::Joint,
+        &mut |_, _| {},
+    );
+    assert!(!matches!(e, Err(FitError::BadMeasurementCov(_))));
 }
 
 #[test]

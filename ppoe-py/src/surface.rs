@@ -6,8 +6,9 @@ use crate::convert::{
 };
 use crate::core_err;
 use numpy::{PyArrayDyn, PyReadonlyArrayDyn};
+use ppoe::linalg::SymmetricEigen;
 use ppoe::surface;
-use ppoe::{Mat6, SymmetricEigen, Vec3, Vector};
+use ppoe::{Mat6, Vec3, Vector};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 

@@ -82,7 +82,8 @@ impl<T: Real, const N: usize> SymmetricEigen<T, N> {
     /// # Example
     ///
     /// ```
-    /// use ppoe::{Matrix, SymmetricEigen, Vector};
+    /// use ppoe::linalg::SymmetricEigen;
+    /// use ppoe::{Matrix, Vector};
     /// // [[2, 1], [1, 2]]: eigenvalues 3 and 1, eigenvectors (1, 1)/√2 and (1, −1)/√2.
     /// let e = SymmetricEigen::new(&Matrix([[2.0_f64, 1.0], [1.0, 2.0]]))?;
     /// approx::assert_abs_diff_eq!(e.values, Vector([3.0, 1.0]), epsilon = 1e-15);

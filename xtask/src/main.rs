@@ -10,6 +10,9 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
 
+mod layers;
+mod rust_paths;
+
 /// One entry point: its name, what it runs and what it is for.
 struct Task {
     name: &'static str,
@@ -145,8 +148,19 @@ fn root() -> PathBuf {
     manifest.parent().unwrap_or(manifest).to_path_buf()
 }
 
+/// The tasks this crate runs itself (no script): name and help.
+const BUILT_IN: &[(&str, &str)] = &[(
+    "layers",
+    "the core crate's module graph against ARCHITECTURE.md's layer table: no import \
+     cycle, no layer using one below it; [SRC_DIR [ARCHITECTURE_MD]]",
+)];
+
 fn usage() -> String {
     let mut s = String::from("usage: cargo xtask <task> [args…]\n\ntasks:\n");
+    for (name, help) in BUILT_IN {
+        s += &format!("  {name:<13} {help}\n");
+        s += &format!("  {:<13}   runs: built in (xtask/src/{name}.rs)\n", "");
+    }
     for t in TASKS {
         s += &format!("  {:<13} {}\n", t.name, t.help);
         s += &format!("  {:<13}   runs: {}\n", "", t.command.join(" "));
@@ -163,6 +177,9 @@ fn main() -> ExitCode {
     if matches!(name.as_str(), "help" | "-h" | "--help" | "list") {
         print!("{}", usage());
         return ExitCode::SUCCESS;
+    }
+    if name == "layers" {
+        return layers::run(&root(), &args[1..]);
     }
     let Some(task) = TASKS.iter().find(|t| t.name == name) else {
         eprint!("error: unknown task {name:?}\n\n{}", usage());

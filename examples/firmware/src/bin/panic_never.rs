@@ -2,8 +2,8 @@
 //! `panic-never` crate).
 //!
 //! This firmware calls every public function and method of `so3`, `se3`, `uncertainty`,
-//! `ellipsoid` (eigen-decomposition, ellipsoids, surface points), `chain` (the compile-time
-//! [`Chain`] and the slice view) and `rank1` (the rank-one PPOE), in f32 and f64, on opaque
+//! `linalg` (the eigen-decomposition), `surface` (ellipsoids, surface points) and `chain`
+//! (the compile-time [`Chain`], the slice view, the dense and rank-one PPOE), in f32 and f64, on opaque
 //! inputs (`black_box`: the optimiser may assume nothing about values, slice lengths or
 //! enum variants). Its panic handler calls a function that does not exist, so the link
 //! fails ("undefined symbol: ppoe_panic_path_survived_optimisation") if any panic path of
@@ -24,7 +24,6 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::debug;
 use ppoe::chain::{self, Chain, ChainView, Convention, Joint, JointConstants};
 use ppoe::linalg::SymmetricEigen;
-use ppoe::rank1;
 use ppoe::surface::{self, LiftSurface, Surface};
 use ppoe::uncertainty::{self, IterationOptions, Order};
 use ppoe::{se3, so3, Mat3, Mat6, Matrix, Real, Transform, Vec3, Vec6, Vector};
@@ -211,7 +210,7 @@ fn chains<T: Real>(seed: &Chain<T, 6>) {
     let s2: [T; 6] = bb([1e-4, 0.0, 4e-4, 1e-3, 2e-4, 0.05].map(T::lit));
     sink(seed.ppoe_rank1(&th, &s2, conv));
     sink(seed.ppoe_rank1_checked(&th, &s2, conv));
-    sink(rank1::dense_covariances(seed, &s2));
+    sink(chain::dense_covariances(seed, &s2));
     // The slice view with opaque lengths.
     let view: ChainView<'_, T> = bb(seed.as_ref());
     let ths: &[T] = bb(&th);

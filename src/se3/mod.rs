@@ -23,7 +23,9 @@ use crate::error::Error;
 use crate::linalg::{Mat3, Mat6, Matrix, Vec3, Vec6, Vector};
 use crate::scalar::Real;
 use crate::so3;
-use crate::transport::{mirror_lower, Congruence};
+
+pub(crate) mod congruence;
+use congruence::{mirror_lower, Congruence};
 
 /// A rigid transform stored as rotation R and translation p: `x ↦ R·x + p`.
 ///
@@ -347,7 +349,7 @@ pub fn exp<T: Real>(xi: &Vec6<T>) -> Transform<T> {
 /// A few ε·‖v‖ absolute for every ω (the rounding of the cross products, whose
 /// weights relative to ‖v‖, `a·t = (1 − cos t)/t ≤ 0.73` and `b·t² = (t − sin t)/t ≤
 /// 1.22`, are bounded for all t). Measured against an independent f64 reference over t from 10⁻³⁰ to
-/// 10²⁰⁰ (f32: 10³⁰), including t² within a few ulps of 4 (`tests/ellipsoid_props.rs`,
+/// 10²⁰⁰ (f32: 10³⁰), including t² within a few ulps of 4 (`tests/surface_props.rs`,
 /// shipped with this package):
 /// ≤ 4.7·ε·‖v‖ in f64 and ≤ 4.2·ε·‖v‖ in f32 (≤ 1.7 and ≤ 1.2 ε·‖v‖·max(1, t)), the
 /// same order as [`exp`]'s translation.

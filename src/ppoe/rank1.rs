@@ -15,12 +15,14 @@
 //! an f64 oracle stays within 8ε of ‖Σ‖ in the tip frame and 16ε with [`Convention::Left`],
 //! whose base-frame sum has lever arms that cancel; the dense path's error is of the same size.
 
-use crate::chain::{Chain, ChainView, Convention, Joint, UncertainPose};
+use super::{Convention, UncertainPose};
 use crate::error::Error;
+use crate::joint::{screw_noise, Joint};
+use crate::kinematics::{Chain, ChainView};
 use crate::linalg::{Mat6, Vec6};
 use crate::scalar::Real;
+use crate::se3::congruence::mirror_lower;
 use crate::se3::Transform;
-use crate::transport::mirror_lower;
 
 /// `Ad(t⁻¹)·s` without forming the adjoint: `(Rᵀω, Rᵀ(v − p×ω))` (rotation first).
 #[inline(always)]
@@ -127,14 +129,19 @@ impl<T: Real> ChainView<'_, T> {
     /// [`ChainView::ppoe`] with `covsᵢ = σᵢ²·SᵢSᵢᵀ`
     /// ([`screw_noise`](crate::chain::screw_noise)), `sigma2[i]` = σᵢ² the variance of
     /// joint i's value (rad² or m²), computed with one 6-vector per joint instead of a 6×6
-    /// matrix (the module docs say how). Same [`Convention`]s and clipping.
+    /// matrix: every term of the sum is rank one, `σᵢ²·uᵢuᵢᵀ` with uᵢ the transported screw
+    /// axis, a column of the body Jacobian (Right: `Ad(Gᵢ⁻¹)·Sᵢ`, `Gᵢ = Dᵢ₊₁…Dₙ·M`) or of
+    /// the space Jacobian (Left), so `Σ = J·diag(σ²)·Jᵀ`. Same [`Convention`]s and clipping.
     ///
     /// # Errors
     /// [`Error::LengthMismatch`] if `thetas` or `sigma2` does not have one value per joint.
     ///
     /// # Accuracy
     /// Equal to the dense path up to rounding (within 1e-14·‖Σ‖ in f64, 1e-6·‖Σ‖ in f32 on
-    /// the test chains); exactly symmetric, PSD within rounding for σ² ≥ 0.
+    /// the test chains); exactly symmetric, PSD within rounding for σ² ≥ 0. On random
+    /// states of a 6-joint arm the f32 error against an f64 oracle stays within 8ε of ‖Σ‖
+    /// in the tip frame and 16ε with [`Convention::Left`], whose base-frame sum has lever
+    /// arms that cancel; the dense path's error is of the same size.
     pub fn ppoe_rank1(
         &self,
         thetas: &[T],
@@ -214,7 +221,7 @@ pub fn dense_covariances<T: Real, const N: usize>(
 ) -> [Mat6<T>; N] {
     let mut out = [Mat6::zeros(); N];
     for ((o, j), s) in out.iter_mut().zip(&chain.joints).zip(sigma2) {
-        *o = crate::chain::screw_noise(&j.screw, *s);
+        *o = screw_noise(&j.screw, *s);
     }
     out
 }

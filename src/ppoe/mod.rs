@@ -1,15 +1,47 @@
 //! The Probabilistic Product of Exponentials: the tip pose of a chain and the covariance
-//! of its perturbation, from joint values and per-joint covariances. The methods are
-//! those of [`ChainView`] and [`Chain`]; their instruction schedule is in the private
-//! `transport` module.
+//! of its perturbation, from joint values and per-joint covariances. Its types
+//! ([`Convention`], [`UncertainPose`]) and dense entry points (methods of [`ChainView`]
+//! and [`Chain`]) are here; the instruction schedule of the dense loop in `schedule.rs`,
+//! the variant for one variance per joint in `rank1.rs`. Users reach all of it through
+//! `ppoe::chain`, which re-exports the types.
 
-use crate::chain::{Chain, ChainView};
 use crate::error::Error;
+use crate::kinematics::{Chain, ChainView};
 use crate::linalg::Mat6;
 use crate::scalar::Real;
 use crate::se3::Transform;
-use crate::transport::{lanes, ppoe_lanes};
 use crate::uncertainty::{check_covariance, concat_globally, Order};
+
+#[cfg(test)]
+mod lane_tests;
+mod rank1;
+mod schedule;
+
+pub use rank1::dense_covariances;
+
+/// Test-only door to the schedules of other targets, for the `lanes_ratio` benchmark.
+#[cfg(ppoe_bench_lanes)]
+impl<T: Real> ChainView<'_, T> {
+    /// [`ChainView::ppoe`] with `lanes` transports side by side (1, 2 or 4; any other
+    /// value gives 1). Exists only in builds with `--cfg ppoe_bench_lanes`.
+    ///
+    /// # Errors
+    ///
+    /// As [`ChainView::ppoe`].
+    #[doc(hidden)]
+    pub fn ppoe_with_lanes(
+        &self,
+        thetas: &[T],
+        covs: &[Mat6<T>],
+        convention: Convention,
+        lanes: usize,
+    ) -> Result<UncertainPose<T>, Error> {
+        if thetas.len() != self.joints.len() || covs.len() != self.joints.len() {
+            return Err(Error::LengthMismatch);
+        }
+        Ok(schedule::with_lanes(self, thetas, covs, convention, lanes))
+    }
+}
 
 /// Which covariance the PPOE returns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -82,37 +114,7 @@ impl<'a, T: Real> ChainView<'a, T> {
         if thetas.len() != self.joints.len() || covs.len() != self.joints.len() {
             return Err(Error::LengthMismatch);
         }
-        // The lane count is a constant of T and the target: only one arm is compiled in.
-        Ok(match const { lanes::<T>() } {
-            4 => ppoe_lanes::<T, 4>(self, thetas, covs, convention),
-            2 => ppoe_lanes::<T, 2>(self, thetas, covs, convention),
-            _ => ppoe_lanes::<T, 1>(self, thetas, covs, convention),
-        })
-    }
-
-    /// [`ChainView::ppoe`] with `lanes` transports side by side (1, 2 or 4; any other
-    /// value gives 1) instead of the target's choice: for tests that run the schedule of
-    /// other targets on this one (results differ only in rounding).
-    ///
-    /// # Errors
-    ///
-    /// As [`ChainView::ppoe`].
-    #[doc(hidden)]
-    pub fn ppoe_with_lanes(
-        &self,
-        thetas: &[T],
-        covs: &[Mat6<T>],
-        convention: Convention,
-        lanes: usize,
-    ) -> Result<UncertainPose<T>, Error> {
-        if thetas.len() != self.joints.len() || covs.len() != self.joints.len() {
-            return Err(Error::LengthMismatch);
-        }
-        Ok(match lanes {
-            4 => ppoe_lanes::<T, 4>(self, thetas, covs, convention),
-            2 => ppoe_lanes::<T, 2>(self, thetas, covs, convention),
-            _ => ppoe_lanes::<T, 1>(self, thetas, covs, convention),
-        })
+        Ok(schedule::ppoe(self, thetas, covs, convention))
     }
 
     /// The PPOE with input checks: the chain ([`ChainView::check`]), every θ finite, every
@@ -129,8 +131,8 @@ impl<'a, T: Real> ChainView<'a, T> {
     /// square of the lever arms: the output may then fail [`check_covariance`] although
     /// it is the exact propagation of the input (found by fuzzing: an f32 input with
     /// λ_min = −4·10⁻⁵·‖Σ‖ gave −6·10⁻⁴·λ_max, the same in f64). Give PSD inputs, e.g. from
-    /// [`screw_noise`](crate::joint::screw_noise),
-    /// [`bending_noise`](crate::joint::bending_noise) or a factor `L·Lᵀ`.
+    /// [`screw_noise`](crate::chain::screw_noise),
+    /// [`bending_noise`](crate::chain::bending_noise) or a factor `L·Lᵀ`.
     ///
     /// # Errors
     ///

@@ -409,7 +409,7 @@ proptest! {
 
     /// f32 surfaces within the documented bound of f64 surfaces on the same (f32-exact)
     /// inputs: 8·ε₃₂·(1 + r) relative to max(1, max|y|), r = the largest |ξ| on the grid
-    /// (the bound of tests/ellipsoid_golden.rs), for well-conditioned Σ_vv.
+    /// (the bound of tests/surface_golden.rs), for well-conditioned Σ_vv.
     #[test]
     fn f32_within_bound_of_f64(x in vec(-1.0..1.0f64, 42), er in -3i32..0, et in -3i32..1, k in 0.0..4.0f64) {
         let cov64 = test_cov(6, &x, er, et, 0);

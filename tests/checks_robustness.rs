@@ -397,3 +397,107 @@ fn estimator_overflow() {
     case::<f64>();
     case::<f32>();
 }
+
+/// Issue #26 item 4's matrix at scale s: diagonal s, Σ₀₁ = s/2 and Σ₁₀ = −s/2, so its
+/// asymmetry is s itself, 100 % of its scale. Its symmetric part, s·I, is PSD: only the
+/// symmetry check can reject it.
+fn antisymmetric_by_its_scale<T: Real>(s: f64) -> Mat6<T> {
+    let mut m = Mat6::<f64>::identity().scale(s);
+    m.0[0][1] = 0.5 * s;
+    m.0[1][0] = -0.5 * s;
+    m6(&m)
+}
+
+/// A PSD covariance of scale s whose only asymmetry is `rel`·s in Σ₂₄ (Σ₄₂ unchanged).
+fn symmetric_but<T: Real>(s: f64, rel: f64) -> Mat6<T> {
+    let mut m = Mat6::<f64>::zeros();
+    for (i, row) in m.0.iter_mut().enumerate() {
+        for (j, x) in row.iter_mut().enumerate() {
+            *x = if i == j {
+                1.0
+            } else {
+                0.1 / (1 + i + j) as f64
+            };
+        }
+    }
+    let mut m: Mat6<T> = m6(&m.scale(s));
+    m.0[2][4] += T::lit(rel * s);
+    m
+}
+
+/// The symmetry check is relative to the matrix's scale (`max|Σᵢⱼ − Σⱼᵢ| ≤ TOL·‖Σ‖_max`,
+/// the documented rule): at every scale from 10⁻⁸ to 10⁴, in f32 and f64, the issue's
+/// matrix is rejected, so is an asymmetry of 2·TOL of the scale; a symmetric covariance,
+/// one with rounding-level asymmetry (4 ulps of its scale) and one with 0.5·TOL are
+/// accepted. Before, the tolerance was TOL·max(1, ‖Σ‖_max): absolute below 1, so every
+/// matrix of these with scale ≤ 10⁻⁸ passed.
+fn symmetry_is_relative<T: Real>() {
+    let name = std::any::type_name::<T>();
+    let tol = T::TOL.to_f64();
+    for e in -8..=4 {
+        let s = 10f64.powi(e);
+        let cases = [
+            (
+                antisymmetric_by_its_scale::<T>(s),
+                false,
+                "issue #26's matrix",
+            ),
+            (symmetric_but::<T>(s, 2.0 * tol), false, "2·TOL asymmetric"),
+            (symmetric_but::<T>(s, 0.5 * tol), true, "0.5·TOL asymmetric"),
+            (
+                symmetric_but::<T>(s, 4.0 * T::EPS.to_f64()),
+                true,
+                "4 ulps asymmetric",
+            ),
+            (symmetric_but::<T>(s, 0.0), true, "symmetric"),
+        ];
+        for (m, ok, what) in cases {
+            let want = if ok { Ok(()) } else { Err(Error::NotSymmetric) };
+            assert_eq!(check_covariance(&m), want, "{name} {what} at 1e{e}");
+        }
+    }
+}
+
+#[test]
+fn symmetry_is_relative_f64() {
+    symmetry_is_relative::<f64>();
+}
+
+#[test]
+fn symmetry_is_relative_f32() {
+    symmetry_is_relative::<f32>();
+}
+
+/// `ppoe_checked` (also what the C API's checked PPOE calls) rejects a joint covariance
+/// that is antisymmetric by its own small scale, at every scale, in f32 and f64.
+fn ppoe_checked_rejects_small_asymmetry<T: Real>() {
+    let g = golden("ppoe/seed_linkmount_tcp.json");
+    let (joints, home) = chain_from_golden::<T>(&g);
+    let chain = ChainView {
+        joints: &joints,
+        home,
+    };
+    let th = vec![T::lit(0.1); joints.len()];
+    for e in -8..=4 {
+        let s = 10f64.powi(e);
+        let mut covs = vec![Mat6::<T>::identity().scale(T::lit(s)); joints.len()];
+        assert!(chain.ppoe_checked(&th, &covs, Convention::Right).is_ok());
+        covs[1] = antisymmetric_by_its_scale(s);
+        assert_eq!(
+            chain.ppoe_checked(&th, &covs, Convention::Right),
+            Err(Error::NotSymmetric),
+            "{} at 1e{e}",
+            std::any::type_name::<T>()
+        );
+    }
+}
+
+#[test]
+fn ppoe_checked_rejects_small_asymmetry_f64() {
+    ppoe_checked_rejects_small_asymmetry::<f64>();
+}
+
+#[test]
+fn ppoe_checked_rejects_small_asymmetry_f32() {
+    ppoe_checked_rejects_small_asymmetry::<f32>();
+}

@@ -209,8 +209,8 @@ const ARM: Chain<f64, 6> = Chain::new(
 );
 
 /// The worst f32 error of both paths against the f64 oracle over 20,000 random states of
-/// `ARM`, per convention: the figures the `random_f32` bounds and `src/rank1.rs` cite.
-/// `cargo test --release -p ppoe --test rank1 -- --ignored --nocapture`
+/// `ARM`, per convention: the figures the `random_f32` bounds and the rank-one PPOE's docs cite.
+/// `cargo test --release -p ppoe --test ppoe_rank1 -- --ignored --nocapture`
 #[test]
 #[ignore = "a measurement (20,000 states), not a check"]
 fn worst_f32_error_over_random_states() {
@@ -234,8 +234,8 @@ fn worst_f32_error_over_random_states() {
             let th: [f32; 6] = std::array::from_fn(|_| (uniform() * 8.0 - 4.0) as f32);
             let s2: [f32; 6] = std::array::from_fn(|_| (uniform() * 1e-2) as f32);
             let (th64, s64) = (th.map(f64::from), s2.map(f64::from));
-            let truth = arm64.ppoe(&th64, &ppoe::rank1::dense_covariances(&arm64, &s64), c);
-            let dense = arm32.ppoe(&th, &ppoe::rank1::dense_covariances(&arm32, &s2), c);
+            let truth = arm64.ppoe(&th64, &ppoe::chain::dense_covariances(&arm64, &s64), c);
+            let dense = arm32.ppoe(&th, &ppoe::chain::dense_covariances(&arm32, &s2), c);
             let fast = arm32.ppoe_rank1(&th, &s2, c);
             fast_worst = fast_worst.max(max_rel_to(&fast.cov, &truth.cov));
             dense_worst = dense_worst.max(max_rel_to(&dense.cov, &truth.cov));
@@ -250,7 +250,7 @@ proptest! {
     fn random_f64(th in proptest::array::uniform6(-4.0f64..4.0),
                   s2 in proptest::array::uniform6(0.0f64..1e-2)) {
         for c in CONVENTIONS {
-            let dense = ARM.ppoe(&th, &ppoe::rank1::dense_covariances(&ARM, &s2), c);
+            let dense = ARM.ppoe(&th, &ppoe::chain::dense_covariances(&ARM, &s2), c);
             let fast = ARM.ppoe_rank1(&th, &s2, c);
             prop_assert!(max_rel(&fast.cov, &dense.cov) <= 1e-14);
             prop_assert!(rel_err(&flat_t(&fast.pose), &flat_t(&dense.pose)) <= 1e-14);
@@ -271,8 +271,8 @@ proptest! {
         let s64 = s2.map(f64::from);
         let arm64 = widen(&arm32);
         for c in CONVENTIONS {
-            let truth = arm64.ppoe(&th64, &ppoe::rank1::dense_covariances(&arm64, &s64), c);
-            let dense = arm32.ppoe(&th, &ppoe::rank1::dense_covariances(&arm32, &s2), c);
+            let truth = arm64.ppoe(&th64, &ppoe::chain::dense_covariances(&arm64, &s64), c);
+            let dense = arm32.ppoe(&th, &ppoe::chain::dense_covariances(&arm32, &s2), c);
             let fast = arm32.ppoe_rank1(&th, &s2, c);
             // Left sums the transports in the base frame, where lever arms from the base
             // to each joint cancel: over 20,000 random states of this arm
