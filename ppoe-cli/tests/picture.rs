@@ -223,6 +223,24 @@ const VISUAL_URDF: &str = r#"<?xml version="1.0"?>
 </robot>
 "#;
 
+/// `ppoe render` of the `shapes` URDF at `urdf`, one case at zero, as PNG into `dir`, with
+/// `extra` arguments; its standard error.
+fn render_shapes(urdf: &Path, dir: &Path, extra: &[&str]) -> String {
+    let input = dir.join("cases.json");
+    std::fs::write(&input, zero_cases(1, 1)).unwrap();
+    let (urdf, input, out) = (
+        urdf.to_str().unwrap(),
+        input.to_str().unwrap(),
+        dir.to_str().unwrap(),
+    );
+    let mut args = vec![
+        "render", "--urdf", urdf, "--base", "base", "--tip", "tool", "--input", input, "--format",
+        "png", "--out", out,
+    ];
+    args.extend_from_slice(extra);
+    String::from_utf8_lossy(&run(&args).stderr).into_owned()
+}
+
 #[test]
 fn primitives_and_meshes_are_drawn_and_missing_meshes_noted() {
     let dir = tmp("shapes");
@@ -231,24 +249,7 @@ fn primitives_and_meshes_are_drawn_and_missing_meshes_noted() {
     std::fs::write(dir.join("meshes/tetra.dae"), "<COLLADA/>").unwrap();
     let urdf = dir.join("shapes.urdf");
     std::fs::write(&urdf, VISUAL_URDF).unwrap();
-    let input = dir.join("cases.json");
-    std::fs::write(&input, zero_cases(1, 1)).unwrap();
-    let out = run(&[
-        "render",
-        "--urdf",
-        urdf.to_str().unwrap(),
-        "--base",
-        "base",
-        "--tip",
-        "tool",
-        "--input",
-        input.to_str().unwrap(),
-        "--format",
-        "png",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let stderr = render_shapes(&urdf, &dir, &[]);
     assert!(stderr.contains("missing.stl' not found"), "{stderr}");
     assert!(stderr.contains("tetra.dae"), "{stderr}");
     let px = decode_png(&dir.join("ppoe-render-0.png"));
@@ -291,24 +292,7 @@ fn hostile_mesh_files_are_skipped_by_name() {
     );
     let path = dir.join("shapes.urdf");
     std::fs::write(&path, urdf).unwrap();
-    let input = dir.join("cases.json");
-    std::fs::write(&input, zero_cases(1, 1)).unwrap();
-    let out = run(&[
-        "render",
-        "--urdf",
-        path.to_str().unwrap(),
-        "--base",
-        "base",
-        "--tip",
-        "tool",
-        "--input",
-        input.to_str().unwrap(),
-        "--format",
-        "png",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let stderr = render_shapes(&path, &dir, &[]);
     for (name, why) in [
         ("fifo.stl", "not a regular file"),
         ("zero.stl", "not a regular file"),
@@ -322,24 +306,7 @@ fn hostile_mesh_files_are_skipped_by_name() {
     assert!(!stderr.contains("tetra.obj"), "{stderr}");
     assert!(dir.join("ppoe-render-0.png").is_file());
     // A bound below the tetrahedra's 4 triangles reduces them (here to nothing: skipped).
-    let out = run(&[
-        "render",
-        "--urdf",
-        path.to_str().unwrap(),
-        "--base",
-        "base",
-        "--tip",
-        "tool",
-        "--input",
-        input.to_str().unwrap(),
-        "--format",
-        "png",
-        "--out",
-        dir.to_str().unwrap(),
-        "--mesh-triangles",
-        "2",
-    ]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let stderr = render_shapes(&path, &dir, &["--mesh-triangles", "2"]);
     assert!(
         stderr
             .lines()
