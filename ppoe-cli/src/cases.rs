@@ -111,23 +111,18 @@ pub fn load(
 pub fn check_counts(robot: &RobotChain, input: &Input) -> anyhow::Result<()> {
     let n = robot.joints.len();
     for (i, c) in input.cases.iter().enumerate() {
-        if c.thetas.len() != n {
-            bail!(
-                "case {i}: {} joint values given, the chain from '{}' to '{}' has {n} joints ({})",
-                c.thetas.len(),
-                robot.base,
-                robot.tip,
-                robot.joint_names().join(", ")
-            );
-        }
-        if c.covs.len() != n {
-            bail!(
-                "case {i}: {} covariances given, the chain from '{}' to '{}' has {n} joints ({})",
-                c.covs.len(),
-                robot.base,
-                robot.tip,
-                robot.joint_names().join(", ")
-            );
+        for (given, what) in [
+            (c.thetas.len(), "joint values"),
+            (c.covs.len(), "covariances"),
+        ] {
+            if given != n {
+                bail!(
+                    "case {i}: {given} {what} given, the chain from '{}' to '{}' has {n} joints ({})",
+                    robot.base,
+                    robot.tip,
+                    robot.joint_names().join(", ")
+                );
+            }
         }
     }
     Ok(())

@@ -169,26 +169,21 @@ type Raw = (Vec<[f64; 3]>, Vec<[u32; 3]>);
 /// Binary if the size is exactly that of the triangle count in the header, else ASCII if it
 /// starts with `solid`.
 fn stl(bytes: &[u8]) -> Result<Raw, String> {
-    if bytes.len() >= 84 {
-        let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as u64;
-        if 84 + 50 * n == bytes.len() as u64 {
-            return Ok(stl_binary(&bytes[84..]));
-        }
+    let count = bytes
+        .get(80..84)
+        .map(|b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])));
+    if count.is_some_and(|n| 84 + 50 * n == bytes.len() as u64) {
+        return Ok(stl_binary(&bytes[84..]));
     }
-    let text = std::str::from_utf8(bytes).ok();
-    match text {
-        Some(t) if t.trim_start().starts_with("solid") => stl_ascii(t),
-        _ if bytes.len() >= 84 => Err(format!(
-            "neither ASCII STL nor binary STL (the header counts {} triangles, which need {} \
+    match (std::str::from_utf8(bytes).ok(), count) {
+        (Some(t), _) if t.trim_start().starts_with("solid") => stl_ascii(t),
+        (_, Some(n)) => Err(format!(
+            "neither ASCII STL nor binary STL (the header counts {n} triangles, which need {} \
              bytes; the file has {})",
-            u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]),
-            84 + 50
-                * u64::from(u32::from_le_bytes([
-                    bytes[80], bytes[81], bytes[82], bytes[83]
-                ])),
+            84 + 50 * n,
             bytes.len()
         )),
-        _ => Err("too short for binary STL and not ASCII STL".into()),
+        (_, None) => Err("too short for binary STL and not ASCII STL".into()),
     }
 }
 
