@@ -3,7 +3,8 @@
 //! (the methods `ppoe`, `ppoe_checked`, `ppoe_fourth_order` and `ppoe_rank1*` of
 //! [`Chain`] and [`ChainView`], with [`Convention`] and [`UncertainPose`]), and the joint
 //! model ([`Joint`], [`JointKind`], the noise models [`screw_noise`] and
-//! [`bending_noise`]). They are defined in private modules, one per concept (the joint,
+//! [`bending_noise`]), and calibrated kinematics folded into a chain
+//! ([`fold_calibration`]). They are defined in private modules, one per concept (the joint,
 //! the chain's kinematics, the PPOE); this module is their one public door.
 //!
 //! Frames: screw axes and the space Jacobian are in the base frame, the body Jacobian and
@@ -26,6 +27,7 @@
 //! assert!(ARM.as_ref().check().is_ok()); // unit axes, valid home pose
 //! ```
 
+pub use crate::calibration::fold_calibration;
 pub use crate::joint::{bending_noise, screw_noise, Joint, JointConstants, JointKind};
 pub use crate::kinematics::{Chain, ChainView};
 pub use crate::ppoe::{dense_covariances, Convention, UncertainPose};
