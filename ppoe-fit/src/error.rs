@@ -30,6 +30,11 @@ pub enum FitError {
         /// What is wrong.
         why: String,
     },
+    /// A campaign holds both pose and position samples.
+    MixedMeasurements {
+        /// The first sample of the other kind.
+        sample: usize,
+    },
     /// The measurement covariance is not a finite symmetric PSD 6×6 matrix.
     BadMeasurementCov(String),
     /// The chain itself is invalid (from `ppoe`'s check).
@@ -67,6 +72,10 @@ impl fmt::Display for FitError {
                     "sample {sample}: the pose is not a rigid transform: {why}"
                 )
             }
+            FitError::MixedMeasurements { sample } => write!(
+                f,
+                "sample {sample}: a campaign's samples are all poses or all positions, not both"
+            ),
             FitError::BadMeasurementCov(why) => write!(f, "measurement_cov: {why}"),
             FitError::BadChain(why) => write!(f, "the chain is invalid: {why}"),
             FitError::TooFewSamples { got, needed } => write!(

@@ -57,6 +57,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+mod calibration;
 mod design;
 mod error;
 mod fisher;
@@ -68,6 +69,10 @@ mod report;
 mod samples;
 pub mod simulate;
 
+pub use calibration::{
+    chi2_sf, fit_campaign, Calibration, CampaignFit, CampaignSample, Estimate, Measurement,
+    MeasurementCov, PoseEstimate, ResidualRms, SystematicTest,
+};
 pub use error::FitError;
 pub use param::Model;
 pub use prediction::PredictionError;

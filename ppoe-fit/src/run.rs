@@ -136,8 +136,25 @@ pub fn fit(
     model: Model,
     progress: &mut dyn FnMut(usize, f64),
 ) -> Result<Fit, FitError> {
-    check_chain(joints, home)?;
     let r = check_measurement(measurement_cov)?;
+    fit_with(joints, home, samples, r, model, None, progress)
+}
+
+/// [`fit`] with a checked measurement covariance `r`; `position_pad`: the samples are
+/// position-only measurements padded to poses (rotation residual exactly zero, `r`'s
+/// rotation block this variance, far above any rotation the model predicts), so the
+/// likelihood is the 3-D one of the translations up to a constant (removed from the
+/// reported log-likelihood), and the goodness of fit uses 3-D distances.
+pub(crate) fn fit_with(
+    joints: &[Joint<f64>],
+    home: &Transform<f64>,
+    samples: &[Sample],
+    r: Matrix6<f64>,
+    model: Model,
+    position_pad: Option<f64>,
+    progress: &mut dyn FnMut(usize, f64),
+) -> Result<Fit, FitError> {
+    check_chain(joints, home)?;
     let n = joints.len();
     let needed = 10.max(if model == Model::Joint { n + 2 } else { 21 * n });
     if samples.len() < needed {
@@ -179,13 +196,21 @@ pub fn fit(
         x.clone()
     };
     let prediction = prediction_error(&design, &joints_only, n, &unit_cov);
-    let gof = goodness_of_fit(&distances(&design, &x, &m.mahalanobis, with_floor));
+    let d = match position_pad {
+        Some(_) => position_distances(&design, &x),
+        None => distances(&design, &x, &m.mahalanobis, with_floor),
+    };
+    let gof = goodness_of_fit(&d);
+    // The padded rotation block's constant, −½·ln det(2π·V·I₃) per sample.
+    let pad = position_pad.map_or(0.0, |v| {
+        1.5 * (2.0 * std::f64::consts::PI * v).ln() * samples.len() as f64
+    });
     let joints_out = joint_fits(joints, &data, &param, &x, &info);
     let floor = with_floor.then(|| [x[n][(0, 0)], x[n][(3, 3)]]);
     let mut fit = Fit {
         model,
         joints: joints_out,
-        log_likelihood: out.loglik,
+        log_likelihood: out.loglik + pad,
         samples: samples.len(),
         converged: out.converged,
         iterations: out.iterations,
@@ -463,9 +488,9 @@ fn warnings(
     if !g.fits {
         w.push(format!(
             "the residuals do not follow the fitted model (Kolmogorov-Smirnov p = {:.1e}, mean \
-             Mahalanobis² {:.2} for 6 expected): the model does not describe this robot's noise \
-             (try the full model, check measurement_cov, or the noise is too large for the \
-             second-order model)",
+             Mahalanobis² {:.2}): the model does not describe these residuals (systematic errors \
+             of the tracker's registration, the marker's place or the kinematics: calibrate \
+             with --estimate; or the noise is too large for the second-order model)",
             g.p_value, g.mean_mahalanobis
         ));
     }
@@ -532,6 +557,19 @@ fn without_floor(x: &[Matrix6<f64>]) -> Vec<Matrix6<f64>> {
         .take(x.len() - 1)
         .copied()
         .chain([Matrix6::zeros()])
+        .collect()
+}
+
+/// Position-only samples: each sample's squared Mahalanobis distance of the translation
+/// residual under the translation block of Σ (with R and the floor), dimension 3.
+fn position_distances(design: &Design, x: &[Matrix6<f64>]) -> Vec<(f64, usize)> {
+    (0..design.eta.len())
+        .map(|k| {
+            let s = design.sigma(k, x).fixed_view::<3, 3>(3, 3).into_owned();
+            let e = design.eta[k].fixed_rows::<3>(3).into_owned();
+            let d = s.cholesky().map_or(f64::INFINITY, |c| e.dot(&c.solve(&e)));
+            (d, 3)
+        })
         .collect()
 }
 

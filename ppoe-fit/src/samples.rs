@@ -38,7 +38,7 @@ pub(crate) fn to_na(m: &ppoe::Mat6<f64>) -> Matrix6<f64> {
 
 /// The measured pose as a transform with its rotation made exactly orthonormal (nearest
 /// rotation), after checking it is rigid within [`RIGID_TOL`].
-fn rigid(index: usize, m: &[[f64; 4]; 4]) -> Result<Transform<f64>, FitError> {
+pub(crate) fn rigid(index: usize, m: &[[f64; 4]; 4]) -> Result<Transform<f64>, FitError> {
     if let Some((r, c)) = (0..16)
         .map(|k| (k / 4, k % 4))
         .find(|&(r, c)| !m[r][c].is_finite())

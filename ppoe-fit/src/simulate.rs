@@ -105,3 +105,55 @@ pub fn samples_at(
         })
         .collect()
 }
+
+/// The systematic errors of a simulated measurement campaign (see [`campaign`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Systematic {
+    /// X: the robot base in the tracker's frame.
+    pub base_in_tracker: Transform<f64>,
+    /// Y: the marker in the tip frame (position-only campaigns measure its origin).
+    pub marker_in_tip: Transform<f64>,
+    /// The true joint zero offsets δᵢ.
+    pub offsets: Vec<f64>,
+    /// The true axis errors κᵢ (base-frame twists, `Sᵢ'' = Ad(Exp(κᵢ))·Sᵢ`; empty: none).
+    pub axis_errors: Vec<Vec6<f64>>,
+    /// The true home error μ (`M' = M·Exp(μ)`).
+    pub home_error: Vec6<f64>,
+}
+
+/// `count` samples of a campaign with systematic errors `sys`, from `seed`:
+/// `T = X·D₁'·Exp(ξ₁)···Dₙ'·Exp(ξₙ)·M'·Y·Exp(ν)` with the true kinematics `D', M'` (the
+/// nominal `joints`, `home` with `sys`'s offsets and errors folded by
+/// [`ppoe::chain::fold_calibration`]), ξᵢ ~ N(0, `covs[i]`) (covariances of the *true*
+/// chain's joints), ν ~ N(0, `measurement_cov`) in the marker frame. Returns the samples
+/// as `(thetas, T)` — the joint values as the encoders read them (θ, not θ + δ) — and the
+/// true chain and home pose (without Y). Take `T`'s translation for position-only data.
+///
+/// # Panics
+/// If `sys` does not fold (wrong lengths or non-finite values): a test helper's misuse.
+pub fn campaign(
+    joints: &[Joint<f64>],
+    home: &Transform<f64>,
+    covs: &[Mat6<f64>],
+    measurement_cov: Option<&Mat6<f64>>,
+    sys: &Systematic,
+    count: usize,
+    seed: u64,
+) -> (Vec<Sample>, Vec<Joint<f64>>, Transform<f64>) {
+    let mut truth = joints.to_vec();
+    let mut true_home = *home;
+    ppoe::chain::fold_calibration(
+        &mut truth,
+        &mut true_home,
+        &sys.offsets,
+        &sys.axis_errors,
+        &sys.home_error,
+    )
+    .expect("the systematic errors fold into the chain");
+    let marked = true_home * sys.marker_in_tip;
+    let mut samples = samples(&truth, &marked, covs, measurement_cov, count, seed);
+    for s in &mut samples {
+        s.pose = (sys.base_in_tracker * Transform::from_matrix4(&s.pose)).to_matrix4();
+    }
+    (samples, truth, true_home)
+}
