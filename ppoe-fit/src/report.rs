@@ -21,6 +21,15 @@ pub(crate) struct Information {
 
 pub(crate) fn information(f: &DMatrix<f64>) -> Information {
     let p = f.nrows();
+    if p == 0 {
+        // No parameters (a campaign without calibration): nothing to decompose.
+        return Information {
+            cov: DMatrix::zeros(0, 0),
+            undetermined: Vec::new(),
+            rank: 0,
+            null_directions: Vec::new(),
+        };
+    }
     let d: Vec<f64> = (0..p).map(|i| f[(i, i)].max(0.0).sqrt()).collect();
     let inv = |x: f64| if x > 0.0 { 1.0 / x } else { 0.0 };
     let s = DMatrix::from_fn(p, p, |i, j| f[(i, j)] * inv(d[i]) * inv(d[j]));

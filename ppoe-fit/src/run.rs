@@ -172,7 +172,25 @@ pub(crate) fn fit_with(
         floor_min: with_floor.then(|| floor_min(&data)).transpose()?,
     };
     let design = Design::new(&data, model == Model::Joint, with_floor, r);
-    let theta0 = param.start(&method_of_moments(&design, &param));
+    let theta0 = match position_pad {
+        // The padded rotation block (ηηᵀ − R = −V·I there) would dominate the least
+        // squares: the moments of the translation block only.
+        Some(_) => {
+            let masked = translation_rows(&data);
+            let mut rt = r;
+            rt.fixed_view_mut::<3, 3>(0, 0).fill(0.0);
+            let d = Design::new(&masked, model == Model::Joint, with_floor, rt);
+            param.start(&method_of_moments(&d, &param))
+        }
+        None => param.start(&method_of_moments(&design, &param)),
+    };
+    let mut theta0 = theta0;
+    if let (Some(_), Some(min)) = (position_pad, param.floor_min) {
+        // Position-only: the floor's rotation variance is invisible beside the padded
+        // block; held at its bound (the active set keeps it there), since a step in a
+        // direction without information would swamp the step of every other parameter.
+        theta0[n] = min[0].ln();
+    }
     let names = natural_names(joints, model, with_floor);
     let (_, determinable) =
         identifiability_check(&design, &param, &theta0, joints, home, r, &names)?;
@@ -304,6 +322,29 @@ fn floor_min(data: &Prepared) -> Result<[f64; 2], FitError> {
         (1e-12 * rot / (3.0 * k)).max(1e-16 * scale).max(1e-300),
         (1e-12 * tra / (3.0 * k)).max(1e-16 * scale).max(1e-300),
     ])
+}
+
+/// The samples with the rotation rows of every transport zeroed: their designs predict
+/// the translation block of Σ only.
+fn translation_rows(data: &Prepared) -> Prepared {
+    Prepared {
+        eta: data.eta.clone(),
+        transports: data
+            .transports
+            .iter()
+            .map(|ads| {
+                ads.iter()
+                    .map(|a| {
+                        let mut a = *a;
+                        a.fixed_rows_mut::<3>(0).fill(0.0);
+                        a
+                    })
+                    .collect()
+            })
+            .collect(),
+        screws: data.screws.clone(),
+        clipped: data.clipped,
+    }
 }
 
 /// The natural parameters that best match Σ(θ) to ηηᵀ in least squares.

@@ -142,10 +142,13 @@ fn rms(r: &[f64], dim: usize) -> ResidualRms {
     }
 }
 
+/// A calibrated chain, its home pose with the marker, and the samples in its base frame.
+type Mapped = (Vec<Joint<f64>>, Transform<f64>, Vec<Sample>);
+
 /// The data mapped through the calibration at `at`: the calibrated chain with Y in its
 /// home pose, and samples in the base frame (position-only: padded to poses whose
 /// rotation is the model's, so their rotation residual is zero).
-fn mapped(c: &Campaign, at: &Point) -> Option<(Vec<Joint<f64>>, Transform<f64>, Vec<Sample>)> {
+fn mapped(c: &Campaign, at: &Point) -> Option<Mapped> {
     let (joints, home) = at.chain(c.joints, c.home)?;
     let xi = at.x.inverse();
     let samples = c
@@ -362,7 +365,8 @@ fn calibration_test(
     let e = layout.estimate;
     let tested: Vec<String> = [(e.base, "base"), (e.tip, "tip"), (e.offsets, "offsets")]
         .into_iter()
-        .filter_map(|(done, g)| (!done).then(|| g.to_string()))
+        .filter(|(done, _)| !done)
+        .map(|(_, g)| g.to_string())
         .collect();
     if tested.is_empty() {
         return Ok(None);

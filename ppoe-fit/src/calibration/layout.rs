@@ -198,7 +198,7 @@ fn offset_joints(n: usize, e: &Estimate) -> Vec<usize> {
     }
     let last_free = e.tip || e.kinematics;
     (0..n)
-        .filter(|&i| !(i == 0 && e.base) && !(i + 1 == n && last_free))
+        .filter(|&i| !((i == 0 && e.base) || (i + 1 == n && last_free)))
         .collect()
 }
 

@@ -68,6 +68,7 @@ pub struct CampaignSample {
 /// The tracker's noise: 6×6 for poses (marker frame, rotation first), 3×3 for positions
 /// (m², in the tip frame's axes; an isotropic σ²·I is the same in every frame).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)] // a value passed once per fit
 pub enum MeasurementCov {
     /// For pose samples.
     Pose([[f64; 6]; 6]),
