@@ -4,20 +4,41 @@
 
 use anyhow::{bail, Context};
 use ppoe_build::RobotChain;
-use ppoe_fit::{Fit, Model, Sample};
+use ppoe_fit::{CampaignFit, CampaignSample, Estimate, Fit, Measurement, MeasurementCov, Model};
 use serde_json::{json, Value};
 use std::io::Write;
 use std::time::Instant;
 
 /// The parsed input: the samples and the tracker's noise.
-type FitInput = (Vec<Sample>, Option<[[f64; 6]; 6]>);
+type FitInput = (Vec<CampaignSample>, Option<MeasurementCov>);
 
-/// Parses the input `{"samples":[{"thetas":[N],"pose":[[4×4]]}],"measurement_cov":6×6}`;
-/// errors name the sample.
+/// One sample's measurement: `"pose"` (4×4) or `"position"` ([x, y, z]), never both.
+fn measurement(i: usize, s: &Value) -> anyhow::Result<Measurement> {
+    match (s.get("pose"), s.get("position")) {
+        (Some(_), Some(_)) => bail!("sample {i}: both \"pose\" and \"position\" (give one)"),
+        (Some(p), None) => Ok(Measurement::Pose(matrix::<4>(Some(p)).with_context(
+            || format!("sample {i}: \"pose\" must be 4 rows of 4 numbers"),
+        )?)),
+        (None, Some(p)) => {
+            let v = p.as_array().filter(|v| v.len() == 3).and_then(|v| {
+                let x: Option<Vec<f64>> = v.iter().map(Value::as_f64).collect();
+                x
+            });
+            let v = v.with_context(|| format!("sample {i}: \"position\" must be 3 numbers"))?;
+            Ok(Measurement::Position([v[0], v[1], v[2]]))
+        }
+        (None, None) => bail!("sample {i}: no \"pose\" (4×4) or \"position\" ([x, y, z])"),
+    }
+}
+
+/// Parses the input `{"samples":[{"thetas":[N],"pose":[[4×4]]} or
+/// {"thetas":[N],"position":[x,y,z]}], "measurement_cov": 6×6 (poses) or 3×3
+/// (positions)}`; errors name the sample, and a file mixing poses and positions is one.
 pub fn parse_input(text: &str) -> anyhow::Result<FitInput> {
     let v: Value = crate::input::parse_json(text).context(concat!(
         "malformed input JSON (expected {\"samples\":[{\"thetas\":[N numbers],",
-        "\"pose\":[[4×4]]}], \"measurement_cov\": optional 6×6})"
+        "\"pose\":[[4×4]] or \"position\":[x, y, z]}], \"measurement_cov\": optional 6×6 ",
+        "or 3×3})"
     ))?;
     let Some(list) = v.get("samples").and_then(Value::as_array) else {
         bail!("the input has no \"samples\" array");
@@ -35,17 +56,44 @@ pub fn parse_input(text: &str) -> anyhow::Result<FitInput> {
                     .with_context(|| format!("sample {i}: thetas[{j}] is not a number"))
             })
             .collect::<anyhow::Result<Vec<f64>>>()?;
-        let pose = matrix::<4>(s.get("pose"))
-            .with_context(|| format!("sample {i}: \"pose\" must be 4 rows of 4 numbers"))?;
-        samples.push(Sample { thetas, pose });
+        let measurement = measurement(i, s)?;
+        if let Some(first) = samples.first().map(|f: &CampaignSample| &f.measurement) {
+            if std::mem::discriminant(first) != std::mem::discriminant(&measurement) {
+                bail!(
+                    "sample {i}: a {} where sample 0 has a {} (a campaign's samples are all \
+                     poses or all positions)",
+                    kind(&measurement),
+                    kind(first)
+                );
+            }
+        }
+        samples.push(CampaignSample {
+            thetas,
+            measurement,
+        });
     }
+    let position = matches!(
+        samples.first().map(|s| &s.measurement),
+        Some(Measurement::Position(_))
+    );
     let r = match v.get("measurement_cov") {
         None | Some(Value::Null) => None,
-        Some(m) => {
-            Some(matrix::<6>(Some(m)).context("\"measurement_cov\" must be 6 rows of 6 numbers")?)
-        }
+        Some(m) if position => Some(MeasurementCov::Position(
+            matrix::<3>(Some(m))
+                .context("\"measurement_cov\" must be 3 rows of 3 numbers for position samples")?,
+        )),
+        Some(m) => Some(MeasurementCov::Pose(matrix::<6>(Some(m)).context(
+            "\"measurement_cov\" must be 6 rows of 6 numbers for pose samples",
+        )?)),
     };
     Ok((samples, r))
+}
+
+fn kind(m: &Measurement) -> &'static str {
+    match m {
+        Measurement::Pose(_) => "pose",
+        Measurement::Position(_) => "position",
+    }
 }
 
 fn matrix<const N: usize>(v: Option<&Value>) -> anyhow::Result<[[f64; N]; N]> {
@@ -68,9 +116,14 @@ fn matrix<const N: usize>(v: Option<&Value>) -> anyhow::Result<[[f64; N]; N]> {
     Ok(m)
 }
 
-/// Runs the fit for `robot` and returns the output JSON; progress and the summary go to
-/// stderr.
-pub fn run(robot: &RobotChain, text: &str, model: Model) -> anyhow::Result<Value> {
+/// Runs the fit for `robot` with the calibration groups `estimate` and returns the output
+/// JSON; progress and the summary go to stderr.
+pub fn run(
+    robot: &RobotChain,
+    text: &str,
+    model: Model,
+    estimate: Estimate,
+) -> anyhow::Result<Value> {
     let (samples, r) = parse_input(text)?;
     let (joints, home) = crate::eval::core_joints::<f64>(robot);
     let start = Instant::now();
@@ -81,27 +134,48 @@ pub fn run(robot: &RobotChain, text: &str, model: Model) -> anyhow::Result<Value
             last = Instant::now();
         }
     };
-    let fit = ppoe_fit::fit(&joints, &home, &samples, r.as_ref(), model, &mut progress)?;
-    summary(&fit, start.elapsed().as_secs_f64());
-    Ok(to_json(robot, &fit, r))
+    let out = ppoe_fit::fit_campaign(
+        &joints,
+        &home,
+        &samples,
+        r.as_ref(),
+        model,
+        estimate,
+        &mut progress,
+    )?;
+    summary(&out, start.elapsed().as_secs_f64());
+    Ok(to_json(robot, &out, r))
 }
 
-/// The output JSON (see `ppoe fit --help`).
-pub fn to_json(robot: &RobotChain, f: &Fit, r: Option<[[f64; 6]; 6]>) -> Value {
+/// The output JSON (see `ppoe fit --help`): the noise model, with each joint's offset and
+/// axis correction and the `calibration` object ([`crate::calibration`]).
+pub fn to_json(robot: &RobotChain, out: &CampaignFit, r: Option<MeasurementCov>) -> Value {
+    let f = &out.fit;
+    let c = &out.calibration;
     let joints: Vec<Value> = f
         .joints
         .iter()
-        .map(|j| {
+        .enumerate()
+        .map(|(i, j)| {
             json!({
                 "name": j.name, "cov": j.cov, "cov_se": j.cov_se,
                 "sigma2": j.sigma2, "sigma2_se": j.sigma2_se,
                 "sigma": j.sigma2.map(f64::sqrt),
+                "offset": c.offsets[i], "offset_se": c.offset_se[i],
+                "axis_correction": c.axis_corrections[i],
+                "axis_correction_se": c.axis_correction_se[i],
             })
         })
         .collect();
     let id = &f.identifiability;
     let g = &f.goodness_of_fit;
     let p = &f.prediction_error;
+    let r = match r {
+        None if c.position_only => json!([[0.0f64; 3]; 3].to_vec()),
+        None => json!([[0.0f64; 6]; 6].to_vec()),
+        Some(MeasurementCov::Pose(m)) => json!(m),
+        Some(MeasurementCov::Position(m)) => json!(m),
+    };
     json!({
         "model": f.model.name(),
         "chain": {"base": robot.base, "tip": robot.tip, "joints": robot.joint_names()},
@@ -110,7 +184,8 @@ pub fn to_json(robot: &RobotChain, f: &Fit, r: Option<[[f64; 6]; 6]>) -> Value {
         "samples": f.samples,
         "converged": f.converged,
         "iterations": f.iterations,
-        "measurement_cov": r.unwrap_or([[0.0; 6]; 6]),
+        "measurement": if c.position_only { "position" } else { "pose" },
+        "measurement_cov": r,
         "residual_floor": f.residual_floor.map(|[a, b]| json!({"rotation": a, "translation": b})),
         "identifiability": {
             "parameters": id.parameters, "determined": id.determined,
@@ -120,21 +195,27 @@ pub fn to_json(robot: &RobotChain, f: &Fit, r: Option<[[f64; 6]; 6]>) -> Value {
         "goodness_of_fit": {
             "mean_mahalanobis": g.mean_mahalanobis, "beyond_99": g.beyond_99,
             "ks_statistic": g.ks_statistic, "p_value": g.p_value, "fits": g.fits,
+            "mean_test": crate::calibration::test_json(&out.mean_test),
+            "calibration_test": out.calibration_test.as_ref().map(crate::calibration::test_json),
         },
         "prediction_error": {
             "median": p.median, "worst": p.worst, "configurations": p.configurations,
             "samples_for_5_percent": ppoe_fit::samples_for(f.samples, p.median, 0.05),
         },
+        "calibration": crate::calibration::to_json(c),
         "warnings": f.warnings,
     })
 }
 
-/// The human-readable summary on stderr: per joint, estimate ± standard error.
-fn summary(f: &Fit, seconds: f64) {
+/// The human-readable summary on stderr: the residuals before and after calibration,
+/// then per joint estimate ± standard error, the quality figures and the warnings.
+fn summary(out: &CampaignFit, seconds: f64) {
+    let f = &out.fit;
     let mut e = std::io::stderr().lock();
+    crate::calibration::residual_table(&mut e, &out.calibration);
     let _ = writeln!(
         e,
-        "fit: model {}, {} samples, log-likelihood {:.6e}, {} ({} steps, {seconds:.2} s)",
+        "fit: model {}, {} samples, log-likelihood {:.6e}, {} ({} steps, {} rounds, {seconds:.2} s)",
         f.model.name(),
         f.samples,
         f.log_likelihood,
@@ -143,9 +224,11 @@ fn summary(f: &Fit, seconds: f64) {
         } else {
             "NOT converged"
         },
-        f.iterations
+        f.iterations,
+        out.calibration.rounds
     );
     joint_lines(&mut e, f);
+    crate::calibration::lines(&mut e, &out.calibration);
     quality_lines(&mut e, f);
     for w in &f.warnings {
         let _ = writeln!(e, "warning: {w}");
@@ -195,8 +278,8 @@ fn quality_lines(e: &mut impl Write, f: &Fit) {
     let g = &f.goodness_of_fit;
     let _ = writeln!(
         e,
-        "  goodness of fit: mean Mahalanobis² {:.2} (6 expected), {:.1} % beyond the 99 % \
-         quantile, KS p = {:.3} -> {}",
+        "  goodness of fit: mean Mahalanobis² {:.2}, {:.1} % beyond the 99 % quantile, KS p = \
+         {:.3} -> {}",
         g.mean_mahalanobis,
         100.0 * g.beyond_99,
         g.p_value,

@@ -16,6 +16,7 @@
 //! error, 1 for anything else (see [`report::EXIT_CODES`]).
 
 mod args;
+mod calibration;
 mod cases;
 mod commands;
 mod draw;

@@ -186,3 +186,130 @@ fn errors_name_the_sample() {
     assert!(run(v).contains("measurement_cov"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A campaign with the tracker 3 m away, the marker 5 cm off the tool and joint zeros off
+/// by a milliradian, of a precise robot (0.1 mrad per joint).
+fn campaign(position: bool) -> (Value, ppoe_fit::simulate::Systematic) {
+    use ppoe::{se3, Vec6};
+    let (joints, home) = seed_chain();
+    let truth: Vec<_> = joints.iter().map(|j| screw_noise(&j.screw, 1e-8)).collect();
+    let sys = ppoe_fit::simulate::Systematic {
+        base_in_tracker: se3::exp(&Vec6::from([0.4, -2.0, 1.1, 3.0, -1.0, 0.5])),
+        marker_in_tip: se3::exp(&Vec6::from([0.2, 0.3, -0.1, 0.05, -0.03, 0.04])),
+        offsets: vec![1e-3, -8e-4, 6e-4, 1.2e-3, -5e-4, 9e-4],
+        axis_errors: Vec::new(),
+        home_error: Vec6::zeros(),
+    };
+    // Position-only: a laser tracker's 10 µm noise.
+    let r = ppoe::Mat6::from_diagonal(&Vec6::from([0., 0., 0., 1e-10, 1e-10, 1e-10]));
+    let meas = position.then_some(&r);
+    let (samples, _, _) =
+        ppoe_fit::simulate::campaign(&joints, &home, &truth, meas, &sys, 1500, 31);
+    let s: Vec<Value> = samples
+        .iter()
+        .map(|s| {
+            if position {
+                json!({"thetas": s.thetas, "position": [s.pose[0][3], s.pose[1][3], s.pose[2][3]]})
+            } else {
+                json!({"thetas": s.thetas, "pose": s.pose})
+            }
+        })
+        .collect();
+    (json!({ "samples": s }), sys)
+}
+
+fn fit_json(dir: &Path, input: &Value, extra: &[&str]) -> (bool, Value, String) {
+    let data = dir.join("campaign.json");
+    std::fs::write(&data, input.to_string()).unwrap();
+    let mut args = vec!["fit", "--input", data.to_str().unwrap(), "--model", "joint"];
+    args.extend(extra);
+    let r = ppoe(&args);
+    let stderr = String::from_utf8_lossy(&r.stderr).to_string();
+    let v = serde_json::from_slice(&r.stdout).unwrap_or(Value::Null);
+    (r.status.success(), v, stderr)
+}
+
+/// Without `--estimate` the campaign is rejected with a warning naming calibration; with
+/// it the fit accepts, reports the registration and the offsets, and the summary opens
+/// with the before/after residual table.
+#[test]
+fn campaign_needs_and_gets_calibration() {
+    let dir = scratch("campaign");
+    let (input, sys) = campaign(false);
+    let (ok, v, stderr) = fit_json(&dir, &input, &[]);
+    assert!(ok, "{stderr}");
+    assert_eq!(v["goodness_of_fit"]["fits"], false, "{stderr}");
+    assert!(stderr.contains("--estimate base,tip,offsets"), "{stderr}");
+    let (ok, v, stderr) = fit_json(&dir, &input, &["--estimate", "base,tip,offsets"]);
+    assert!(ok, "{stderr}");
+    let table = stderr
+        .find("residual RMS (estimated: base, tip, offsets)")
+        .expect("the table");
+    assert!(table < stderr.find("fit: model").unwrap(), "{stderr}");
+    assert_eq!(v["goodness_of_fit"]["fits"], true, "{stderr}");
+    let c = &v["calibration"];
+    assert_eq!(c["estimated"], json!(["base", "tip", "offsets"]));
+    let before = c["residual_rms"]["before"]["position_mm"].as_f64().unwrap();
+    let after = c["residual_rms"]["after"]["position_mm"].as_f64().unwrap();
+    assert!(after < 0.15 && before > 3.0 * after, "{before} {after}");
+    let x = &c["base_in_tracker"]["pose"];
+    for i in 0..3 {
+        let want = sys.base_in_tracker.translation.0[i];
+        assert!((x[i][3].as_f64().unwrap() - want).abs() < 1e-4, "{x}");
+    }
+    let joints = v["joints"].as_array().unwrap();
+    // The first offset is X's rotation about the first axis, the last the marker's: the
+    // gauge holds them at zero without a standard error.
+    assert_eq!(joints[0]["offset_se"], Value::Null);
+    assert_eq!(joints[5]["offset_se"], Value::Null);
+    for (j, want) in joints.iter().zip(&sys.offsets).take(5).skip(1) {
+        let (d, se) = (
+            j["offset"].as_f64().unwrap(),
+            j["offset_se"].as_f64().unwrap(),
+        );
+        assert!((d - want).abs() < 3.0 * se, "{j}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Position-only samples: a 3-D likelihood, a 3×3 `measurement_cov`, the marker a point.
+#[test]
+fn position_only_campaign() {
+    let dir = scratch("position");
+    let (mut input, _) = campaign(true);
+    input["measurement_cov"] = json!([[1e-10, 0, 0], [0, 1e-10, 0], [0, 0, 1e-10]]);
+    let (ok, v, stderr) = fit_json(&dir, &input, &["--estimate", "all"]);
+    assert!(ok, "{stderr}");
+    assert_eq!(v["measurement"], "position");
+    assert_eq!(
+        v["calibration"]["residual_rms"]["after"]["rotation_mrad"],
+        Value::Null
+    );
+    assert_eq!(v["goodness_of_fit"]["fits"], true, "{stderr}");
+    // A 6×6 measurement covariance for positions is an error, as is a mixed file.
+    input["measurement_cov"] = json!([[0.0; 6]; 6].to_vec());
+    let (ok, _, stderr) = fit_json(&dir, &input, &[]);
+    assert!(
+        !ok && stderr.contains("3 rows of 3 numbers for position samples"),
+        "{stderr}"
+    );
+    input["measurement_cov"] = Value::Null;
+    input["samples"][7]["pose"] = json!([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]);
+    let (ok, _, stderr) = fit_json(&dir, &input, &[]);
+    assert!(
+        !ok && stderr.contains("sample 7: both \"pose\" and \"position\""),
+        "{stderr}"
+    );
+    input["samples"][7]
+        .as_object_mut()
+        .unwrap()
+        .remove("position");
+    let (ok, _, stderr) = fit_json(&dir, &input, &[]);
+    assert!(
+        !ok && stderr.contains("sample 7: a pose where sample 0 has a position"),
+        "{stderr}"
+    );
+    let (ok, _, stderr) = fit_json(&dir, &input, &["--estimate", "base,knee"]);
+    assert!(!ok && stderr.contains("unknown group 'knee'"), "{stderr}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

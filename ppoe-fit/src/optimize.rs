@@ -84,11 +84,12 @@ impl Scoring {
 /// magnitude).
 fn trusted(param: &Param, theta: &DVector<f64>, step: DVector<f64>) -> DVector<f64> {
     if param.model == crate::param::Model::Joint {
-        // Log-variances: a step is a factor per variance, at most e³ = 20 per step (a
-        // floor variance near its bound has a vanishing Fisher information, and its
-        // scoring step alone could overflow); scaled as a whole to keep its direction.
-        let scale = (3.0 / step.amax().max(1e-300)).min(1.0);
-        let mut cand = theta + step * scale;
+        // Log-variances: a step is a factor per variance, at most e³ = 20 per step and
+        // parameter. A floor variance near its bound has a vanishing Fisher information
+        // and its scoring step alone could overflow; clipped per parameter, so that it
+        // cannot shrink every other parameter's step to nothing (scaling the whole step
+        // did, and scoring then stalled short of the optimum).
+        let mut cand = theta + step.map(|s| s.clamp(-3.0, 3.0));
         param.clamp(&mut cand);
         return cand;
     }

@@ -26,6 +26,13 @@ pub struct FitArgs {
     /// The noise model to fit.
     #[arg(long, value_enum)]
     model: FitModel,
+    /// Calibrate together with the noise: a comma-separated list of `base` (the robot base
+    /// in the tracker's frame), `tip` (the marker in the tip frame), `offsets` (joint zero
+    /// offsets), `kinematics` (each joint's axis and the home pose), or `all`. Without it
+    /// the samples must be in the robot's base frame with the marker at the tip frame, and
+    /// the fit only tests for systematic errors.
+    #[arg(long, value_name = "LIST", value_parser = parse_estimate)]
+    estimate: Option<ppoe_fit::Estimate>,
     /// Write the result to FILE instead of standard output (atomically; a device or a FIFO
     /// such as /dev/stdout is written through).
     #[arg(long, value_name = "FILE")]
@@ -52,7 +59,8 @@ pub fn run(a: &FitArgs) -> anyhow::Result<()> {
         FitModel::Joint => ppoe_fit::Model::Joint,
         FitModel::Full => ppoe_fit::Model::Full,
     };
-    let result = fit::run(&robot.chain, text, model)
+    let estimate = a.estimate.unwrap_or(ppoe_fit::Estimate::NONE);
+    let result = fit::run(&robot.chain, text, model, estimate)
         .map_err(|e| anyhow::anyhow!("{}: {e:#}", input.name))?;
     let mut text = serde_json::to_string_pretty(&result)?;
     text.push('\n');
@@ -60,4 +68,25 @@ pub fn run(a: &FitArgs) -> anyhow::Result<()> {
         Some(p) => output::write_atomic(p, |w| w.write_all(text.as_bytes())),
         None => output::print(text.as_bytes()),
     }
+}
+
+/// `--estimate`'s list: `base`, `tip`, `offsets`, `kinematics` (any subset), or `all`.
+fn parse_estimate(s: &str) -> Result<ppoe_fit::Estimate, String> {
+    let mut e = ppoe_fit::Estimate::NONE;
+    for item in s.split(',').map(str::trim) {
+        match item {
+            "base" => e.base = true,
+            "tip" => e.tip = true,
+            "offsets" => e.offsets = true,
+            "kinematics" => e.kinematics = true,
+            "all" => e = ppoe_fit::Estimate::ALL,
+            other => {
+                return Err(format!(
+                    "unknown group '{other}' (expected base, tip, offsets, kinematics or all, \
+                     comma-separated)"
+                ))
+            }
+        }
+    }
+    Ok(e)
 }
