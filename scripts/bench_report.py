@@ -122,6 +122,9 @@ def selftest():
                      "samples": "2000", "median_s": "0.0123", "iters": "7",
                      "converged": "true"}], rows
     assert "fit_bench" in render_fit(fit), render_fit(fit)
+    cal = fit + ("fit_calibration_bench robot=arm7.urdf joints=7 model=joint estimate=base,tip"
+                 " samples=2000 median_s=2.5 rounds=4 fits=true\n")
+    assert "| arm7.urdf | 7 | joint | base,tip | 2000 | 2.5 | 4 | true |" in render_fit(cal)
     pin = ("versions pin=4.1.0 gxx=12.2.0\npinocchio robot=seed joints=6 ns_per_call=153.07"
            " min_ns=151.81 batches=7 calls=5000 max_abs_err=2.220e-16\n")
     r = kv_lines(pin, "pinocchio")
@@ -357,6 +360,18 @@ def render_fit(fit_text):
             r.get(k, "?") for k in ("robot", "joints", "model", "tracker", "samples", "median_s",
                                     "iters", "converged")))
     L.append("")
+    cal = kv_lines(fit_text, "fit_calibration_bench")
+    if cal:
+        L.append("Calibration with the noise model (`fit_campaign`, a campaign with every "
+                 "systematic error at once; its `fit_calibration_bench` lines):")
+        L.append("")
+        L.append("| robot | joints | model | estimate | samples | median s | rounds | fits |")
+        L.append("|---|---:|---|---|---:|---:|---:|---|")
+        for r in cal:
+            L.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % tuple(
+                r.get(k, "?") for k in ("robot", "joints", "model", "estimate", "samples",
+                                        "median_s", "rounds", "fits")))
+        L.append("")
     return "\n".join(L) + "\n"
 
 

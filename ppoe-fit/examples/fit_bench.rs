@@ -7,9 +7,16 @@
 //! nothing else,
 //! `fit_bench robot=<file> joints=<n> model=<joint|full> tracker=<yes|no> samples=2000 median_s=<f> iters=<k> converged=<true|false>`;
 //! stderr names the CPU (the figures mean nothing without it, nor on a loaded machine).
+//!
+//! Then the calibration cases: a campaign of 2000 pose samples with every systematic error
+//! at once (`tests/common/campaign.rs`: tracker metres away, marker centimetres off, joint
+//! zeros and axes off) on the 7-joint arm, fitted by `fit_campaign` with the joint model
+//! and `--estimate base,tip,offsets` and `all`, three repeats each; one line per case,
+//! `fit_calibration_bench robot=arm7.urdf joints=7 model=joint estimate=<list> samples=2000 median_s=<f> rounds=<k> fits=<true|false>`.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
+use common::campaign::{run, Setup, BASE};
 use common::*;
 use ppoe_fit::{fit, simulate, Model};
 use std::time::Instant;
@@ -79,6 +86,28 @@ fn case(robot_index: usize, model: Model, tracker_noise: bool, repeats: usize) -
     )
 }
 
+/// A calibration case: the median wall time of `repeats` fits of one campaign.
+fn calibration_case(estimate: ppoe_fit::Estimate, repeats: usize) -> String {
+    let setup = Setup {
+        robot: 5,
+        estimate,
+        ..BASE
+    };
+    let mut runs: Vec<_> = (0..repeats).map(|_| run(setup)).collect();
+    runs.sort_by(|a, b| a.seconds.total_cmp(&b.seconds));
+    let r = &runs[repeats / 2];
+    format!(
+        "fit_calibration_bench robot={} joints={} model=joint estimate={} samples={} median_s={:.4} rounds={} fits={}",
+        ROBOTS[5].0,
+        r.out.fit.joints.len(),
+        estimate.names().join(","),
+        setup.samples,
+        r.seconds,
+        r.out.calibration.rounds,
+        r.out.fit.goodness_of_fit.fits
+    )
+}
+
 /// `fit_bench [CASE [REPEATS]]`: one case (index into `CASES`) and fewer repeats, for
 /// profiling; no argument runs every case five times.
 fn main() {
@@ -91,6 +120,18 @@ fn main() {
     for (k, (robot_index, model, tracker_noise)) in CASES.into_iter().enumerate() {
         if args.first().is_none_or(|&only| only == k) {
             println!("{}", case(robot_index, model, tracker_noise, repeats));
+        }
+    }
+    let calibrations = [
+        ppoe_fit::Estimate {
+            kinematics: false,
+            ..ppoe_fit::Estimate::ALL
+        },
+        ppoe_fit::Estimate::ALL,
+    ];
+    for (k, estimate) in calibrations.into_iter().enumerate() {
+        if args.first().is_none_or(|&only| only == CASES.len() + k) {
+            println!("{}", calibration_case(estimate, repeats.min(3)));
         }
     }
 }

@@ -180,9 +180,16 @@ impl Param {
         match self.model {
             Model::Joint => {
                 let n = self.n;
+                // Where the moments give no joint a positive variance (a floor took the
+                // residuals), the joints start at 1e-6 of the floor's instead of at 1e-300,
+                // from where scoring can still reach them.
+                let floor_scale = match self.floor_min {
+                    Some(_) => 1e-6 * natural[n].max(natural[n + 1]).max(0.0),
+                    None => 0.0,
+                };
                 let top = (0..n)
                     .map(|i| natural[i])
-                    .fold(0.0f64, f64::max)
+                    .fold(floor_scale, f64::max)
                     .max(1e-300);
                 for i in 0..n {
                     th[i] = natural[i].max(1e-6 * top).ln();

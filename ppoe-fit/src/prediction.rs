@@ -83,5 +83,7 @@ fn relative_error(
         }
     });
     let expected = (&g * unit_cov).component_mul(&g).sum().max(0.0);
-    expected.sqrt() / (design.sigma(k, x) - design.r).norm()
+    // A fit whose joints' Σ vanished (a floor took every residual) predicts nothing: a
+    // huge finite figure says so, where a division by zero would make the report ∞.
+    expected.sqrt() / (design.sigma(k, x) - design.r).norm().max(1e-300)
 }

@@ -3,6 +3,8 @@
 //! the fitted model's predictions at held-out configurations.
 #![allow(dead_code)]
 
+pub mod campaign;
+
 use ppoe::chain::{bending_noise, screw_noise, ChainView, Convention, Joint, JointKind};
 use ppoe::{Mat3, Mat6, Transform, Vec3};
 use ppoe_fit::{fit, simulate, Fit, Model};
