@@ -104,6 +104,9 @@ pub struct Setup {
     pub size: f64,
     pub samples: usize,
     pub seed: u64,
+    /// The data already in the robot's base frame and the marker at the tip frame (no
+    /// registration, no marker offset; the other errors as `size` says).
+    pub registered: bool,
 }
 
 pub const BASE: Setup = Setup {
@@ -115,6 +118,7 @@ pub const BASE: Setup = Setup {
     size: 1.0,
     samples: 2000,
     seed: 3,
+    registered: false,
 };
 
 /// The true noise: precise joint-value noise, or for the full model that plus bending
@@ -141,7 +145,7 @@ pub fn run(s: Setup) -> Run {
     let (file, base, tip) = ROBOTS[s.robot];
     let (joints, home) = super::robot(file, base, tip);
     let mut sys = systematic(&joints, s.size, s.seed);
-    if s.size == 0.0 {
+    if s.size == 0.0 || s.registered {
         sys.base_in_tracker = Transform::identity();
         sys.marker_in_tip = Transform::identity();
     }
