@@ -78,16 +78,23 @@ enum Command {
     /// file (the input of `ppoe eval`) as a mesh for Blender or MeshLab.
     #[command(after_help = EXIT_CODES_SHORT)]
     Mesh(commands::mesh::MeshArgs),
-    /// Fit the per-joint noise covariances to joint values recorded with tool poses
-    /// measured by an external tracker (maximum likelihood of the PPOE's model).
+    /// Fit the per-joint noise covariances to joint values recorded with tool poses or
+    /// positions measured by an external tracker (maximum likelihood of the PPOE's model),
+    /// calibrating the tracker's registration, the marker and the kinematics with
+    /// --estimate.
     ///
-    /// Input: {"samples":[{"thetas":[N numbers],"pose":[[4×4 row-major, tip in base]]}],
-    /// "measurement_cov": optional 6×6, the tracker's noise in the tip frame (rotation
-    /// first)}. Output (stdout, or --out written atomically): {"model","joints":[{"name",
-    /// "cov" (6×6, what `eval` takes as covs[i]),"cov_se","sigma2","sigma2_se"}],
-    /// "log_likelihood","samples","converged","identifiability","goodness_of_fit",
-    /// "prediction_error" (relative standard error of the predicted tool covariance),
-    /// "warnings",...}; a summary (estimate ± standard error per joint) on stderr.
+    /// Input: {"samples":[{"thetas":[N numbers],"pose":[[4×4 row-major, marker in the
+    /// tracker's frame]]} or {"thetas":[N],"position":[x,y,z]} (all samples one kind)],
+    /// "measurement_cov": optional, the tracker's noise: 6×6 in the marker frame
+    /// (rotation first) for poses, 3×3 (m²) for positions}. Output (stdout, or --out
+    /// written atomically): {"model","joints":[{"name","cov" (6×6, what `eval` takes as
+    /// covs[i], of the calibrated chain),"cov_se","sigma2","sigma2_se","offset",
+    /// "offset_se","axis_correction","axis_correction_se"}],"log_likelihood","samples",
+    /// "converged","identifiability","goodness_of_fit" (with "mean_test" and
+    /// "calibration_test"),"prediction_error","calibration" ("base_in_tracker",
+    /// "marker_in_tip" as {"pose","cov"}, "home_correction", "residual_rms" before and
+    /// after, "undetermined"),"warnings",...}; on stderr the residuals before and after
+    /// calibration, then estimate ± standard error per joint.
     #[command(after_help = EXIT_CODES_SHORT)]
     Fit(commands::fit::FitArgs),
     /// List the links and joints of a URDF as a tree (joint type, axis, limits), to find

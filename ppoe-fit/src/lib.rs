@@ -27,6 +27,15 @@
 //! from the inverse Fisher information on the determined subspace; goodness of fit from
 //! the residuals' Mahalanobis distances against χ²₆ ([`GoodnessOfFit`]).
 //!
+//! # Calibration
+//! A real campaign measures `T_meas = X·D₁'·Exp(ξ₁)···Dₙ'·Exp(ξₙ)·M'·Y·Exp(ν)` in a
+//! tracker's frame: [`fit_campaign`] estimates the base X, the marker Y, joint zero
+//! offsets and axis/home corrections ([`Estimate`]) together with the noise, from pose or
+//! position-only samples, with standard errors, the combinations the data cannot separate,
+//! and tests for the systematic errors not estimated ([`SystematicTest`]); the crate's
+//! `calibration_validation` tests check it on simulated campaigns with every systematic
+//! error at once.
+//!
 //! # Accuracy
 //! Each fit reports its own sampling error, [`Fit::prediction_error`] (the standard error
 //! of the predicted tool covariance; the crate's tests check it against the spread of fits

@@ -548,7 +548,9 @@ fn warnings(
             w.push(format!(
                 "a residual floor of {fr:.2e} rad² / {ft:.2e} m² remains beside mean predicted \
                  variances of {vr:.2e} rad² / {vt:.2e} m²: joint-value noise alone does not \
-                 explain the scatter (try --model full, or give measurement_cov)"
+                 explain the scatter: if a systematic test fires, calibrate first (--estimate); \
+                 otherwise give measurement_cov if the tracker's noise is missing, or try \
+                 --model full"
             ));
         }
     }
