@@ -143,10 +143,42 @@ fn section() -> String {
     s
 }
 
+/// One row of the calibration table.
+fn calibration_row(s: &mut String, setup: common::campaign::Setup) {
+    let r = common::campaign::run(setup);
+    let c = &r.out.calibration;
+    let g = &r.out.fit.goodness_of_fit;
+    let est = if setup.estimate.is_none() {
+        "—".to_string()
+    } else {
+        setup.estimate.names().join(",")
+    };
+    let offsets = if setup.estimate.offsets {
+        format!("{:.2}", r.offset_z)
+    } else {
+        "—".into()
+    };
+    let _ = writeln!(
+        s,
+        "| {} | {} | {} | {} | ×{} | {est} | {:.1} % | {:.1} % | {offsets} | {:.3} | {} | {:.3} → {:.3} |",
+        ROBOTS[setup.robot].0,
+        if setup.position { "positions" } else { "poses" },
+        setup.model.name(),
+        if setup.tracker { "yes" } else { "no" },
+        setup.size,
+        100.0 * r.median,
+        100.0 * r.worst,
+        g.p_value,
+        if g.fits { "yes" } else { "**no**" },
+        c.rms_before.position_mm,
+        c.rms_after.position_mm,
+    );
+}
+
 /// The calibration-grade fit (`fit_campaign`, `ppoe fit --estimate`) on campaigns with
 /// every systematic error at once.
 fn calibration_table(s: &mut String) {
-    use common::campaign::{run, Setup, BASE};
+    use common::campaign::{Setup, BASE};
     use ppoe_fit::Estimate;
     s.push_str(
         "\n### 4.1 Calibration with the noise model (`ppoe fit --estimate`)\n\n\
@@ -189,9 +221,7 @@ fn calibration_table(s: &mut String) {
     for (robot, position, model, tracker, size, estimate, seed) in cases {
         // Rows without calibration: data already registered to the base, marker at the
         // tip (the plain fit's premise), only the kinematic errors of `size`.
-        let registered = estimate.is_none();
-        let r = run(Setup {
-            registered,
+        let setup = Setup {
             robot,
             model,
             estimate,
@@ -199,34 +229,10 @@ fn calibration_table(s: &mut String) {
             tracker,
             size,
             seed,
+            registered: estimate.is_none(),
             ..BASE
-        });
-        let c = &r.out.calibration;
-        let g = &r.out.fit.goodness_of_fit;
-        let est = if estimate.is_none() {
-            "—".to_string()
-        } else {
-            estimate.names().join(",")
         };
-        let offsets = if estimate.offsets {
-            format!("{:.2}", r.offset_z)
-        } else {
-            "—".into()
-        };
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {} | ×{size} | {est} | {:.1} % | {:.1} % | {offsets} | {:.3} | {} | {:.3} → {:.3} |",
-            ROBOTS[robot].0,
-            if position { "positions" } else { "poses" },
-            model.name(),
-            if tracker { "yes" } else { "no" },
-            100.0 * r.median,
-            100.0 * r.worst,
-            g.p_value,
-            if g.fits { "yes" } else { "**no**" },
-            c.rms_before.position_mm,
-            c.rms_after.position_mm,
-        );
+        calibration_row(s, setup);
     }
 }
 

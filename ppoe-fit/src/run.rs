@@ -172,25 +172,7 @@ pub(crate) fn fit_with(
         floor_min: with_floor.then(|| floor_min(&data)).transpose()?,
     };
     let design = Design::new(&data, model == Model::Joint, with_floor, r);
-    let theta0 = match position_pad {
-        // The padded rotation block (ηηᵀ − R = −V·I there) would dominate the least
-        // squares: the moments of the translation block only.
-        Some(_) => {
-            let masked = translation_rows(&data);
-            let mut rt = r;
-            rt.fixed_view_mut::<3, 3>(0, 0).fill(0.0);
-            let d = Design::new(&masked, model == Model::Joint, with_floor, rt);
-            param.start(&method_of_moments(&d, &param))
-        }
-        None => param.start(&method_of_moments(&design, &param)),
-    };
-    let mut theta0 = theta0;
-    if let (Some(_), Some(min)) = (position_pad, param.floor_min) {
-        // Position-only: the floor's rotation variance is invisible beside the padded
-        // block; held at its bound (the active set keeps it there), since a step in a
-        // direction without information would swamp the step of every other parameter.
-        theta0[n] = min[0].ln();
-    }
+    let theta0 = start(&data, &design, &param, position_pad);
     let names = natural_names(joints, model, with_floor);
     let (_, determinable) =
         identifiability_check(&design, &param, &theta0, joints, home, r, &names)?;
@@ -241,6 +223,33 @@ pub(crate) fn fit_with(
     fit.warnings = warnings(&fit, &design, &x, data.clipped, needed);
     check_finite(&fit)?;
     Ok(fit)
+}
+
+/// The starting parameters: the method of moments' estimates made admissible.
+fn start(
+    data: &Prepared,
+    design: &Design,
+    param: &Param,
+    position_pad: Option<f64>,
+) -> DVector<f64> {
+    let Some(_) = position_pad else {
+        return param.start(&method_of_moments(design, param));
+    };
+    // Position-only: the padded rotation block (ηηᵀ − R = −V·I there) would dominate the
+    // least squares, so the moments of the translation block only.
+    let masked = translation_rows(data);
+    let mut rt = design.r;
+    rt.fixed_view_mut::<3, 3>(0, 0).fill(0.0);
+    let floor = param.floor_min.is_some();
+    let d = Design::new(&masked, param.model == Model::Joint, floor, rt);
+    let mut theta0 = param.start(&method_of_moments(&d, param));
+    if let Some(min) = param.floor_min {
+        // The floor's rotation variance is invisible beside the padded block: held at its
+        // bound (the active set keeps it there), since a step in a direction without
+        // information would swamp the step of every other parameter.
+        theta0[param.n] = min[0].ln();
+    }
+    theta0
 }
 
 /// A result with a non-finite number in it is an error, not an answer (it would reach the

@@ -31,8 +31,42 @@ fn pose_cov(info: &Information, (s, l): (usize, usize)) -> Option<[[Option<f64>;
     }))
 }
 
-/// The names of the undetermined parameters and the null directions.
-fn undetermined(info: &Information, names: &[String]) -> (Vec<String>, Vec<Vec<(String, f64)>>) {
+/// Names and weighted combinations, for the report.
+type Combinations = Vec<Vec<(String, f64)>>;
+
+/// The names of the undetermined parameters and the null directions, with the offsets of
+/// parallel consecutive axes (determined only by the gauge).
+fn undetermined(
+    info: &Information,
+    names: &[String],
+    layout: &Layout,
+    joints: &[Joint<f64>],
+) -> (Vec<String>, Combinations) {
+    let (mut undetermined, mut null_directions) = null_space(info, names);
+    for &(a, b) in &layout.parallel_pairs {
+        let name = |i: usize| format!("offset of joint '{}'", joints[i].name);
+        for i in [a, b] {
+            if layout.offset_index(i).is_some() && !undetermined.contains(&name(i)) {
+                undetermined.push(name(i));
+            }
+        }
+        null_directions.push(vec![
+            (name(a), std::f64::consts::FRAC_1_SQRT_2),
+            (name(b), -std::f64::consts::FRAC_1_SQRT_2),
+            (
+                format!(
+                    "link length along the arm between joints '{}' and '{}'",
+                    joints[a].name, joints[b].name
+                ),
+                1.0,
+            ),
+        ]);
+    }
+    (undetermined, null_directions)
+}
+
+/// The undetermined parameters' names and the null directions of `info`.
+fn null_space(info: &Information, names: &[String]) -> (Vec<String>, Combinations) {
     let u = (0..names.len())
         .filter(|&i| info.undetermined[i])
         .map(|i| names[i].clone())
@@ -63,26 +97,7 @@ pub(super) fn calibration(
             se(info, k)
         })
         .collect();
-    let (mut undetermined, mut null_directions) = undetermined(info, &names);
-    for &(a, b) in &layout.parallel_pairs {
-        let name = |i: usize| format!("offset of joint '{}'", joints[i].name);
-        for i in [a, b] {
-            if layout.offset_index(i).is_some() && !undetermined.contains(&name(i)) {
-                undetermined.push(name(i));
-            }
-        }
-        null_directions.push(vec![
-            (name(a), std::f64::consts::FRAC_1_SQRT_2),
-            (name(b), -std::f64::consts::FRAC_1_SQRT_2),
-            (
-                format!(
-                    "link length along the arm between joints '{}' and '{}'",
-                    joints[a].name, joints[b].name
-                ),
-                1.0,
-            ),
-        ]);
-    }
+    let (undetermined, null_directions) = undetermined(info, &names, layout, joints);
     let axis_correction_se = (0..n)
         .map(|i| {
             if !layout.has_kinematics() {
