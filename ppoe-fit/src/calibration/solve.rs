@@ -152,7 +152,8 @@ pub(crate) fn linearise(
             .collect();
         Some(w.apply(&diff, d))
     };
-    let parts = crate::parallel::chunks(p, |range| range.map(column).collect::<Option<Vec<_>>>());
+    let parts =
+        crate::parallel::chunks_from(p, 2, |range| range.map(column).collect::<Option<Vec<_>>>());
     let cols: Vec<DVector<f64>> = parts.into_iter().collect::<Option<Vec<_>>>()?.concat();
     let j = DMatrix::from_fn(r.len(), p, |i, k| cols[k][i]);
     Some((r, j))
