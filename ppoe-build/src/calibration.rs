@@ -165,7 +165,7 @@ impl Calibration {
             p = p * se3::exp(&(s * d));
             let m = p.to_matrix4();
             if m.iter().flatten().any(|x| !x.is_finite()) {
-                return Err(non_finite(&j.name));
+                return Err(non_finite(j.name));
             }
             out.push(m);
         }

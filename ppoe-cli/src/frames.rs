@@ -48,7 +48,7 @@ fn prepare(
     input: Option<&Path>,
     noise: &NoiseArgs,
     sink: &Sink<'_>,
-) -> anyhow::Result<(load::Robot, cases::Input, Vec<[[f64; 4]; 4]>)> {
+) -> anyhow::Result<(load::Robot, cases::Input, Vec<picture::geom::Mat4>)> {
     load::check_one_stdin(&[
         load::urdf_input(&chain_args.urdf),
         load::cases_input(input),
