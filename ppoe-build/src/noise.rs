@@ -3,9 +3,22 @@
 //! own noise model.
 //!
 //! The file is the JSON `ppoe fit` writes: `{"model": "joint"|"full", "joints": [{"name":
-//! ..., "cov": 6×6 row-major, "sigma2": ...}, ...], ...}`; other fields are ignored here.
-//! Every joint's `cov` must be finite, symmetric and positive semi-definite, and the joints
-//! must be the chain's, by name and in order.
+//! ..., "cov": 6×6 row-major, "sigma2": ..., "offset": δ, "axis_correction": [6]}, ...],
+//! "calibration": {"estimated": [...], "home_correction": [6], ...}, "goodness_of_fit":
+//! {"fits": bool, ...}, ...}`; other fields are ignored here. Every joint's `cov` must be
+//! finite, symmetric and positive semi-definite, and the joints must be the chain's, by
+//! name and in order.
+//!
+//! The calibration fields are optional (hand-written and older files have none) and read
+//! strictly ([`Calibration`]): a fit that estimated a calibration wrote covariances of the
+//! *calibrated* chain, so [`NoiseModel::calibrated_chain`] folds it into the chain and a
+//! table with such a model is the calibrated chain's ([`crate::Table::generate`]: its
+//! header says so and names the file and its [`NoiseModel::sha256`]). A model without a
+//! calibration (or with every value zero) changes nothing, byte for byte.
+//!
+//! `goodness_of_fit.fits` false means the fit was rejected by its goodness-of-fit test:
+//! [`NoiseModel::check_accepted`] refuses it unless forced (`Config::allow_rejected_noise`,
+//! `--allow-rejected-noise`); a file without `goodness_of_fit` is accepted.
 //!
 //! For a table `NAME` the generated items are `NAME_NOISE: [ppoe::Mat6<T>; N]` (what
 //! `Chain::ppoe` takes as `covs`) and, for the joint model, `NAME_SIGMA2: [T; N]` (the
