@@ -367,12 +367,9 @@ fn rejected_fits_are_refused_unless_allowed() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Each bad calibration field is an error naming the joint (or the field) and the shape.
-#[test]
-fn bad_calibration_fields_name_the_joint() {
-    let chain = config("seed.urdf", "linkmount", "tcp").chain().unwrap();
-    let good: Value = serde_json::from_str(&noise_json(&chain, None, None)).unwrap();
-    let cases: &[(&str, Value, &str)] = &[
+/// (JSON pointer of a field, a bad value, what the error must say.)
+fn bad_fields() -> Vec<(&'static str, Value, &'static str)> {
+    vec![
         (
             "/joints/1/offset",
             json!("0.1"),
@@ -423,8 +420,15 @@ fn bad_calibration_fields_name_the_joint() {
             json!(true),
             "\"goodness_of_fit\" is not an object",
         ),
-    ];
-    for (pointer, value, expected) in cases {
+    ]
+}
+
+/// Each bad calibration field is an error naming the joint (or the field) and the shape.
+#[test]
+fn bad_calibration_fields_name_the_joint() {
+    let chain = config("seed.urdf", "linkmount", "tcp").chain().unwrap();
+    let good: Value = serde_json::from_str(&noise_json(&chain, None, None)).unwrap();
+    for (pointer, value, expected) in &bad_fields() {
         let mut v = good.clone();
         let (parent, key) = pointer.rsplit_once('/').unwrap();
         v.pointer_mut(parent)

@@ -296,12 +296,7 @@ pub fn demo(
     let (k, label) = level(surface)?;
     let seed = match noise {
         Some((p, allow)) => crate::noise::seed(p, allow)?,
-        None => crate::noise::Seed {
-            covs: seed::covs(),
-            chain: seed::SEED,
-            home_frames: seed::SEED_JOINT_FRAMES,
-            folds: Vec::new(),
-        },
+        None => crate::noise::Seed::example(),
     };
     let (chain, covs) = (seed.chain.as_ref(), seed.covs);
     let grid = surface.grid as usize;

@@ -97,6 +97,18 @@ pub struct Seed {
     pub folds: Vec<Mat4>,
 }
 
+impl Seed {
+    /// The seed example as it is: its covariances, the seed table, no calibration.
+    pub fn example() -> Self {
+        Seed {
+            covs: crate::seed::covs(),
+            chain: crate::seed::SEED,
+            home_frames: crate::seed::SEED_JOINT_FRAMES,
+            folds: Vec::new(),
+        }
+    }
+}
+
 /// The seed robot's covariances and chain from a noise model, checked against the seed
 /// table's joint names.
 ///
@@ -116,12 +128,9 @@ pub fn seed(path: &Path, allow_rejected: bool) -> anyhow::Result<Seed> {
         );
     }
     let covs = model.covs();
-    let covs = std::array::from_fn(|i| covs[i]);
     let mut out = Seed {
-        covs,
-        chain: crate::seed::SEED,
-        home_frames: crate::seed::SEED_JOINT_FRAMES,
-        folds: Vec::new(),
+        covs: std::array::from_fn(|i| covs[i]),
+        ..Seed::example()
     };
     if model.is_calibrated() {
         let in_file = |e: ppoe_build::Error| anyhow!("{}: {e}", named.display());
