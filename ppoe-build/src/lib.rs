@@ -320,13 +320,12 @@ impl Config {
             return Ok(None);
         };
         let model = noise::NoiseModel::read(path)?;
-        model
-            .check_accepted(
-                self.allow_rejected_noise,
-                &path.display().to_string(),
-                "call Config::allow_rejected_noise(true)",
-            )
-            .map_err(|e| e.in_file(path))?;
+        // The message names the file itself ("the fit in FILE …").
+        model.check_accepted(
+            self.allow_rejected_noise,
+            &path.display().to_string(),
+            "call Config::allow_rejected_noise(true)",
+        )?;
         Ok(Some((model, path)))
     }
 

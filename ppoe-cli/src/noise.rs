@@ -41,9 +41,10 @@ pub fn read(path: &Path, allow_rejected: bool) -> anyhow::Result<(NoiseModel, Pa
     })?;
     let mut model = NoiseModel::parse(text).map_err(|e| anyhow!("{}: {e}", source.name))?;
     model.sha256 = ppoe_build::codegen::sha256_hex(&source.bytes);
+    // The message names the file itself ("the fit in FILE …").
     model
         .check_accepted(allow_rejected, &source.name, "pass --allow-rejected-noise")
-        .map_err(|e| anyhow!("{}: {e}", source.name))?;
+        .map_err(|e| anyhow!("{e}"))?;
     let named = if load::is_stdin(path) {
         PathBuf::from(&source.file_name)
     } else {
