@@ -23,6 +23,16 @@ fn main() -> Result<(), ppoe_build::Error> {
         .name("SEED")
         .write_to_out_dir("seed_table.rs")?;
 
+    // The seed robot calibrated by a noise file (issue #27): the table of the folded chain.
+    let noise = seed_calibrated_noise();
+    Config::new("../test_data/urdf/seed.urdf")
+        .base("linkmount")
+        .tip("tcp")
+        .scalar(Scalar::Both)
+        .name("SEED_CALIBRATED")
+        .noise(&noise)
+        .write_to_out_dir("seed_calibrated_table.rs")?;
+
     // A gantry with prismatic joints and an oblique slide, f32 only, default joint list.
     Config::new("../test_data/urdf/prismatic.urdf")
         .base("base_link")
@@ -158,6 +168,35 @@ fn hostile_tables() -> Result<(), ppoe_build::Error> {
     src += &format!("\n/// The hostile strings with their tables.\npub static HOSTILE: &[(&str, &ppoe::chain::Chain<f64, 6>, &[ppoe::Mat6<f32>; 6])] = &[\n{list}];\n");
     std::fs::write(out_dir.join("hostile_tables.rs"), src).expect("write hostile_tables.rs");
     Ok(())
+}
+
+/// Writes `seed_calibrated.json` to `OUT_DIR`: a noise file for the seed robot with a
+/// calibration (joint offsets, axis corrections, a home correction) as `ppoe fit
+/// --estimate` writes it; returns its path (the test reads it back).
+fn seed_calibrated_noise() -> std::path::PathBuf {
+    let out_dir = std::path::PathBuf::from(std::env::var_os("OUT_DIR").expect("OUT_DIR"));
+    let joints: Vec<String> = (0..6)
+        .map(|i| {
+            let (d, k) = (0.01 * (i as f64 + 1.0), 0.004 * (i as f64 - 2.5));
+            format!(
+                "{{\"name\": \"joint{}\", \"cov\": [[1e-6,0,0,0,0,0],[0,1e-6,0,0,0,0],[0,0,1e-6,0,0,0],\
+                 [0,0,0,1e-6,0,0],[0,0,0,0,1e-6,0],[0,0,0,0,0,1e-6]], \"sigma2\": 1e-6, \"offset\": {d}, \
+                 \"offset_se\": 1e-5, \"axis_correction\": [{k}, {}, 0, 0, {k}, {}]}}",
+                i + 1,
+                -k,
+                0.5 * k
+            )
+        })
+        .collect();
+    let text = format!(
+        "{{\"model\": \"joint\", \"joints\": [{}],\n \"calibration\": {{\"estimated\": [\"base\", \
+         \"tip\", \"offsets\", \"kinematics\"], \"home_correction\": [0.01, -0.02, 0.005, 0.001, \
+         0.002, -0.003]}},\n \"goodness_of_fit\": {{\"fits\": true}}}}\n",
+        joints.join(",\n ")
+    );
+    let path = out_dir.join("seed_calibrated.json");
+    std::fs::write(&path, text).expect("write seed_calibrated.json");
+    path
 }
 
 /// A JSON string literal (`{:?}` is not JSON for every character).

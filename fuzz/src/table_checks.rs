@@ -156,6 +156,7 @@ fn generate(t: &TableIn, plain: bool, name: &str, lang: Lang, scalar: Scalar) ->
                 sigma2: Some(1e-4),
             })
             .collect(),
+        ..Default::default()
     });
     let path = t
         .noise

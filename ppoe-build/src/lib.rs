@@ -164,6 +164,7 @@
 #![deny(missing_docs)]
 
 pub mod c_names;
+pub mod calibration;
 pub mod chain;
 pub mod codegen;
 pub mod codegen_c;
@@ -199,6 +200,7 @@ pub struct Config {
     scalar: Scalar,
     name: Option<String>,
     noise: Option<PathBuf>,
+    allow_rejected_noise: bool,
 }
 
 impl Config {
@@ -213,6 +215,7 @@ impl Config {
             scalar: Scalar::default(),
             name: None,
             noise: None,
+            allow_rejected_noise: false,
         }
     }
 
@@ -253,9 +256,21 @@ impl Config {
     }
 
     /// A noise model written by `ppoe fit` to bake into the table as `NAME_NOISE` (and
-    /// `NAME_SIGMA2` for the joint model); see [`noise`].
+    /// `NAME_SIGMA2` for the joint model); see [`noise`]. If the fit estimated a
+    /// calibration ([`calibration`]), the table (and [`Config::chain`]) is the calibrated
+    /// chain, the one the covariances belong to. A fit rejected by its goodness-of-fit
+    /// test is refused unless [`Config::allow_rejected_noise`].
     pub fn noise(&mut self, fit_result: impl AsRef<Path>) -> &mut Self {
         self.noise = Some(fit_result.as_ref().to_path_buf());
+        self
+    }
+
+    /// Accept a noise model whose fit was rejected by its goodness-of-fit test
+    /// (`goodness_of_fit.fits` false; default `false`: such a model is an error, since its
+    /// covariances do not explain the data, often because the kinematics are off and the
+    /// fit should estimate a calibration).
+    pub fn allow_rejected_noise(&mut self, allow: bool) -> &mut Self {
+        self.allow_rejected_noise = allow;
         self
     }
 
@@ -283,10 +298,35 @@ impl Config {
             .map_err(|e| e.in_file(&self.urdf))
     }
 
-    /// Reads the URDF and extracts the chain (the values a generated table holds).
+    /// Reads the URDF and extracts the chain (the values a generated table holds): with a
+    /// noise model ([`Config::noise`]) that carries a calibration, the calibrated chain
+    /// ([`noise::NoiseModel::calibrated_chain`]).
+    ///
+    /// # Errors
+    /// The URDF's and the chain's errors; a noise model that cannot be read, is for
+    /// another chain, or whose fit was rejected ([`Config::allow_rejected_noise`]).
     pub fn chain(&self) -> Result<RobotChain> {
         let bytes = self.read()?;
-        self.chain_from(&bytes)
+        let chain = self.chain_from(&bytes)?;
+        match self.noise_model()? {
+            Some((model, path)) => model.calibrated_chain(&chain).map_err(|e| e.in_file(path)),
+            None => Ok(chain),
+        }
+    }
+
+    /// The noise model ([`Config::noise`]) read and checked to be accepted, with its path.
+    fn noise_model(&self) -> Result<Option<(noise::NoiseModel, &Path)>> {
+        let Some(path) = &self.noise else {
+            return Ok(None);
+        };
+        let model = noise::NoiseModel::read(path)?;
+        // The message names the file itself ("the fit in FILE …").
+        model.check_accepted(
+            self.allow_rejected_noise,
+            &path.display().to_string(),
+            "call Config::allow_rejected_noise(true)",
+        )?;
+        Ok(Some((model, path)))
     }
 
     fn const_name(&self) -> String {
@@ -295,15 +335,15 @@ impl Config {
     }
 
     /// The table of [`Config::generate`] or [`Config::generate_c`], through the one
-    /// pipeline ([`Table::generate`]); `noise` says whether the noise model goes in.
-    fn generate_lang(&self, lang: Lang, noise: bool) -> Result<String> {
+    /// pipeline ([`Table::generate`]). A C table takes a noise model only for its
+    /// calibration (the C API takes the covariances as arguments); one without is not used.
+    fn generate_lang(&self, lang: Lang) -> Result<String> {
         let name = self.const_name();
         let bytes = self.read()?;
         let chain = self.chain_from(&bytes)?;
-        let model = match (&self.noise, noise) {
-            (Some(path), true) => Some((noise::NoiseModel::read(path)?, path)),
-            _ => None,
-        };
+        let model = self
+            .noise_model()?
+            .filter(|(model, _)| lang == Lang::Rust || model.is_calibrated());
         let file_name = self.urdf.file_name().map(|s| s.to_string_lossy());
         Table {
             chain: &chain,
@@ -324,7 +364,7 @@ impl Config {
     pub fn generate(&self) -> Result<String> {
         // A bad name is reported before the files are read.
         codegen::check_const_name(&self.const_name()).map_err(|e| e.in_file(&self.urdf))?;
-        self.generate_lang(Lang::Rust, true)
+        self.generate_lang(Lang::Rust)
     }
 
     /// Generates the source and writes it to `$OUT_DIR/<file_name>` (rewriting the file only
@@ -384,14 +424,16 @@ impl Config {
     /// The generated C header ([`codegen_c::generate`]): the same values as
     /// [`generate`](Config::generate), as `static const` data of the C API (`ppoe.h`).
     ///
-    /// The noise model ([`Config::noise`]) is not read: the C API takes the covariances as
-    /// arguments.
+    /// Of the noise model ([`Config::noise`]) only the calibration goes in: if it has one,
+    /// the header is the calibrated chain's, as the Rust table; its covariances do not (the
+    /// C API takes them as arguments). A rejected fit is refused as by
+    /// [`generate`](Config::generate).
     ///
     /// # Errors
     /// As [`generate`](Config::generate), and those of [`codegen_c::generate`]: a name that
     /// does not compile in C ([`c_names::check_c_name`]), a chain of more than
     /// [`codegen_c::C_API_MAX_JOINTS`] joints.
     pub fn generate_c(&self) -> Result<String> {
-        self.generate_lang(Lang::C, false)
+        self.generate_lang(Lang::C)
     }
 }

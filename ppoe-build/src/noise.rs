@@ -3,14 +3,28 @@
 //! own noise model.
 //!
 //! The file is the JSON `ppoe fit` writes: `{"model": "joint"|"full", "joints": [{"name":
-//! ..., "cov": 6×6 row-major, "sigma2": ...}, ...], ...}`; other fields are ignored here.
-//! Every joint's `cov` must be finite, symmetric and positive semi-definite, and the joints
-//! must be the chain's, by name and in order.
+//! ..., "cov": 6×6 row-major, "sigma2": ..., "offset": δ, "axis_correction": [6]}, ...],
+//! "calibration": {"estimated": [...], "home_correction": [6], ...}, "goodness_of_fit":
+//! {"fits": bool, ...}, ...}`; other fields are ignored here. Every joint's `cov` must be
+//! finite, symmetric and positive semi-definite, and the joints must be the chain's, by
+//! name and in order.
+//!
+//! The calibration fields are optional (hand-written and older files have none) and read
+//! strictly ([`Calibration`]): a fit that estimated a calibration wrote covariances of the
+//! *calibrated* chain, so [`NoiseModel::calibrated_chain`] folds it into the chain and a
+//! table with such a model is the calibrated chain's ([`crate::Table::generate`]: its
+//! header says so and names the file and its [`NoiseModel::sha256`]). A model without a
+//! calibration (or with every value zero) changes nothing, byte for byte.
+//!
+//! `goodness_of_fit.fits` false means the fit was rejected by its goodness-of-fit test:
+//! [`NoiseModel::check_accepted`] refuses it unless forced (`Config::allow_rejected_noise`,
+//! `--allow-rejected-noise`); a file without `goodness_of_fit` is accepted.
 //!
 //! For a table `NAME` the generated items are `NAME_NOISE: [ppoe::Mat6<T>; N]` (what
 //! `Chain::ppoe` takes as `covs`) and, for the joint model, `NAME_SIGMA2: [T; N]` (the
 //! joint-value variances `Chain::ppoe_rank1` takes); with `_F32` suffixes for f32 tables.
 
+pub use crate::calibration::Calibration;
 use crate::chain::RobotChain;
 use crate::codegen::Scalar;
 use crate::error::{Error, ErrorKind, Result};
@@ -30,12 +44,22 @@ pub struct NoiseJoint {
 }
 
 /// A noise model as `ppoe fit` writes it.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct NoiseModel {
     /// `"joint"` or `"full"`.
     pub model: String,
     /// Per joint, base to tip.
     pub joints: Vec<NoiseJoint>,
+    /// The calibration the fit estimated with the noise (all zeros if none): the
+    /// covariances belong to the chain it calibrates ([`NoiseModel::calibrated_chain`]).
+    pub calibration: Calibration,
+    /// `goodness_of_fit.fits`: `Some(false)` if the fit was rejected by its
+    /// goodness-of-fit test ([`NoiseModel::check_accepted`]); `None` for a file without it
+    /// (hand-written).
+    pub fits: Option<bool>,
+    /// The lowercase hex SHA-256 of the file's text ([`NoiseModel::parse`]'s argument), so
+    /// a table can name the exact file it was calibrated with.
+    pub sha256: String,
 }
 
 fn config(msg: String) -> Error {
@@ -87,7 +111,15 @@ impl NoiseModel {
                 sigma2: j["sigma2"].as_f64().filter(|s| s.is_finite() && *s >= 0.0),
             });
         }
-        Ok(Self { model, joints })
+        let names: Vec<&str> = joints.iter().map(|j| j.name.as_str()).collect();
+        let calibration = Calibration::parse(&v, list, &names)?;
+        Ok(Self {
+            model,
+            joints,
+            calibration,
+            fits: fits(&v)?,
+            sha256: crate::codegen::sha256_hex(text.as_bytes()),
+        })
     }
 
     /// Reads and parses a fit result file.
@@ -119,12 +151,64 @@ impl NoiseModel {
         Ok(())
     }
 
+    /// `true` if the model carries a calibration that changes the chain (not all zero).
+    pub fn is_calibrated(&self) -> bool {
+        !self.calibration.is_identity()
+    }
+
+    /// The chain the model's covariances belong to: `chain` checked against the model
+    /// ([`NoiseModel::check_against`]) with the calibration folded in
+    /// ([`Calibration::apply`]); `chain` itself, bit for bit, if there is no calibration.
+    ///
+    /// # Errors
+    /// As [`NoiseModel::check_against`] and [`Calibration::apply`].
+    pub fn calibrated_chain(&self, chain: &RobotChain) -> Result<RobotChain> {
+        self.check_against(chain)?;
+        self.calibration.apply(chain)
+    }
+
+    /// Refuses a model whose fit was rejected by its goodness-of-fit test
+    /// (`goodness_of_fit.fits` false) unless `allow`; `file` names the model and `force`
+    /// says how to use it anyway (`"pass --allow-rejected-noise"`,
+    /// `"call Config::allow_rejected_noise(true)"`).
+    ///
+    /// # Errors
+    /// [`ErrorKind::Config`] for a rejected fit that is not allowed.
+    pub fn check_accepted(&self, allow: bool, file: &str, force: &str) -> Result<()> {
+        if allow || self.fits != Some(false) {
+            return Ok(());
+        }
+        Err(config(format!(
+            "the fit in {file} was rejected by its goodness-of-fit test (goodness_of_fit.fits \
+             is false: its noise model does not explain the residuals, often because the \
+             kinematics are off); re-fit with `ppoe fit --estimate ...` (calibration), or \
+             {force} to use it anyway"
+        )))
+    }
+
     /// The per-joint covariances as core matrices.
     pub fn covs(&self) -> Vec<ppoe::Mat6<f64>> {
         self.joints
             .iter()
             .map(|j| ppoe::Mat6::from(j.cov))
             .collect()
+    }
+}
+
+/// `goodness_of_fit.fits`: absent (a hand-written file) is `None`; present, it must be a
+/// boolean in an object.
+fn fits(v: &serde_json::Value) -> Result<Option<bool>> {
+    let Some(g) = v.get("goodness_of_fit") else {
+        return Ok(None);
+    };
+    let g = g
+        .as_object()
+        .ok_or_else(|| config("noise model: \"goodness_of_fit\" is not an object".into()))?;
+    match g.get("fits") {
+        None => Ok(None),
+        Some(f) => f.as_bool().map(Some).ok_or_else(|| {
+            config("noise model: goodness_of_fit.fits: expected true or false".into())
+        }),
     }
 }
 

@@ -6,6 +6,7 @@
 use crate::chain::RobotChain;
 use crate::codegen::{self, Scalar, Source};
 use crate::error::{Error, ErrorKind, Result};
+use crate::literal::{c_comment_text, comment_text, CommentText};
 use crate::noise::{self, NoiseModel};
 use std::path::Path;
 
@@ -46,7 +47,8 @@ pub struct Table<'a> {
     pub scalar: Scalar,
     /// Rust or C.
     pub lang: Lang,
-    /// The noise model to append as `NAME_NOISE` (and `NAME_SIGMA2`), Rust only.
+    /// The noise model to append as `NAME_NOISE` (and `NAME_SIGMA2`), Rust only; its
+    /// calibration, if it has one, makes the table (Rust or C) the calibrated chain's.
     pub noise: Option<Noise<'a>>,
 }
 
@@ -59,34 +61,89 @@ pub fn const_name(name: Option<&str>, stem: &str) -> String {
 impl Table<'_> {
     /// The table's source: the chain's items, then the noise model's.
     ///
+    /// With a noise model that carries a calibration ([`NoiseModel::is_calibrated`]) the
+    /// table is that of the calibrated chain ([`NoiseModel::calibrated_chain`]: screws and
+    /// home pose folded), in Rust and in C, and its header comment says so, naming the
+    /// noise file and its SHA-256. A model without one leaves the chain's table as it is,
+    /// byte for byte.
+    ///
     /// # Errors
-    /// Those of [`codegen::generate`] or [`crate::codegen_c::generate`]; a noise model with
-    /// [`Lang::C`] ([`ErrorKind::Config`]: the C API takes the covariances as arguments);
-    /// a noise model for another chain ([`NoiseModel::check_against`], naming its file).
+    /// Those of [`codegen::generate`] or [`crate::codegen_c::generate`]; a noise model for
+    /// another chain ([`NoiseModel::check_against`]) or whose calibration cannot be folded,
+    /// naming its file; with [`Lang::C`], a noise model without a calibration
+    /// ([`ErrorKind::Config`]: the C API takes the covariances as arguments, so nothing of
+    /// it would go in).
     pub fn generate(&self) -> Result<String> {
         let source = Source {
             file_name: self.file_name.to_string(),
             sha256: codegen::sha256_hex(self.urdf),
         };
+        let calibrated = match self.noise {
+            Some(n) if n.model.is_calibrated() => Some(
+                n.model
+                    .calibrated_chain(self.chain)
+                    .map_err(|e| e.in_file(n.path))?,
+            ),
+            _ => None,
+        };
+        if let (Some(n), None, Lang::C) = (self.noise, &calibrated, self.lang) {
+            return Err(Error::new(
+                ErrorKind::Config,
+                "a noise model cannot be baked into a C table yet: the C API takes the \
+                 covariances as arguments (only a calibration would go in, and this model has \
+                 none)",
+            )
+            .in_file(n.path));
+        }
+        let chain = calibrated.as_ref().unwrap_or(self.chain);
         let mut src = match self.lang {
-            Lang::Rust => codegen::generate(self.chain, self.name, self.scalar, &source),
-            Lang::C => crate::codegen_c::generate(self.chain, self.name, self.scalar, &source),
+            Lang::Rust => codegen::generate(chain, self.name, self.scalar, &source),
+            Lang::C => crate::codegen_c::generate(chain, self.name, self.scalar, &source),
         }?;
-        if let Some(n) = self.noise {
-            if self.lang == Lang::C {
-                return Err(Error::new(
-                    ErrorKind::Config,
-                    "a noise model cannot be baked into a C table yet: the C API takes the \
-                     covariances as arguments",
-                )
-                .in_file(n.path));
-            }
+        let Some(n) = self.noise else {
+            return Ok(src);
+        };
+        let file = n.path.file_name().map(|s| s.to_string_lossy().into_owned());
+        let file = file.unwrap_or_default();
+        if calibrated.is_some() {
+            src = with_calibration_note(&src, self.lang, n.model, &file);
+        }
+        if self.lang == Lang::Rust {
             n.model
                 .check_against(self.chain)
                 .map_err(|e| e.in_file(n.path))?;
-            let file = n.path.file_name().map(|s| s.to_string_lossy().into_owned());
-            src += &noise::generate(n.model, self.name, self.scalar, &file.unwrap_or_default());
+            src += &noise::generate(n.model, self.name, self.scalar, &file);
         }
         Ok(src)
     }
+}
+
+/// `src` with a line after its first (the generated header's) saying that the table is the
+/// calibrated chain of noise file `file`: a `//` line in Rust, a ` * ` line of the header's
+/// block comment in C. The file name and the model's strings go through the comment
+/// escaping of each language, so they cannot end the comment.
+fn with_calibration_note(src: &str, lang: Lang, model: &NoiseModel, file: &str) -> String {
+    let (lead, esc): (&str, fn(&str) -> CommentText) = match lang {
+        Lang::Rust => ("//", comment_text),
+        Lang::C => (" *", c_comment_text),
+    };
+    let estimated: Vec<String> = model
+        .calibration
+        .estimated
+        .iter()
+        .map(|e| esc(e).to_string())
+        .collect();
+    let estimated = if estimated.is_empty() {
+        String::new()
+    } else {
+        format!(" (estimated: {})", estimated.join(", "))
+    };
+    let note = format!(
+        "{lead} Calibrated: the screw axes and home pose have the calibration{estimated} of \
+         the noise file\n{lead} `{}`, sha256 {}, folded in (what its covariances belong to).\n",
+        esc(file),
+        esc(&model.sha256)
+    );
+    let split = src.find('\n').map_or(src.len(), |i| i + 1);
+    format!("{}{note}{}", &src[..split], &src[split..])
 }

@@ -23,6 +23,20 @@ pub struct ChainArgs {
     pub joints: Option<Vec<String>>,
 }
 
+/// The noise model of `eval`, `render` and `mesh`.
+#[derive(Args, Debug, Clone)]
+pub struct NoiseArgs {
+    /// Take every case's covariances from a noise model written by `ppoe fit` (the cases
+    /// then give no "covs"). If the fit estimated a calibration, the chain is the
+    /// calibrated one (offsets and corrections folded in), which the covariances belong to.
+    #[arg(long, value_name = "FILE")]
+    pub noise: Option<PathBuf>,
+    /// Use a noise model whose fit was rejected by its goodness-of-fit test
+    /// (goodness_of_fit.fits false) anyway; without it, such a model is an error.
+    #[arg(long, requires = "noise")]
+    pub allow_rejected_noise: bool,
+}
+
 /// The scalar type the PPOE is computed in.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum EvalScalar {

@@ -4,7 +4,7 @@
 //! noise model (`--noise`) the cases give joint values only and each gets the model's
 //! covariances; the JSON is not edited and parsed again.
 
-use crate::{input, load, noise};
+use crate::{input, load};
 use anyhow::{anyhow, bail};
 use ppoe_build::RobotChain;
 use serde::de::{DeserializeOwned, IgnoredAny};
@@ -68,17 +68,13 @@ fn parse<T: DeserializeOwned>(text: &str, with_syntax: bool) -> anyhow::Result<T
 }
 
 /// Reads, decodes and parses the cases once from `path` (`None` or `-`: standard input);
-/// with a noise model (`--noise`, read first), every case gets its covariances, and a
-/// case that gives its own is an error (one source of covariances).
+/// with the covariances of a noise model (`--noise`, read first: [`crate::noise::apply`]),
+/// every case gets them, and a case that gives its own is an error (one source of
+/// covariances).
 ///
 /// # Errors
-/// Unreadable or malformed input or noise model, naming it; a case with its own covs.
-pub fn load(
-    path: Option<&Path>,
-    noise: Option<&Path>,
-    robot: &RobotChain,
-) -> anyhow::Result<Input> {
-    let covs = noise.map(|p| noise::covs_for(p, robot)).transpose()?;
+/// Unreadable or malformed input, naming it; a case with its own covs.
+pub fn load(path: Option<&Path>, covs: Option<Vec<[[f64; 6]; 6]>>) -> anyhow::Result<Input> {
     let input = load::read(path.unwrap_or(Path::new("-")), "input file")?;
     let malformed = |e: anyhow::Error| anyhow!("{}: malformed input JSON: {e:#}", input.name);
     let text = input::text(&input.bytes).map_err(|e| {

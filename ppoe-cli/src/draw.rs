@@ -283,27 +283,30 @@ fn print_initial(initial: &State) {
     );
 }
 
-/// `ppoe demo`: the seed example from the build-time table.
+/// `ppoe demo`: the seed example from the build-time table; `noise` is a noise model
+/// (and whether a rejected fit is allowed), whose calibration, if any, is folded into the
+/// table at run time.
 pub fn demo(
     out: &Path,
     surface: &SurfaceArgs,
     n_frames: usize,
-    noise: Option<&Path>,
+    noise: Option<(&Path, bool)>,
 ) -> anyhow::Result<()> {
     let start = Instant::now();
     let (k, label) = level(surface)?;
-    let chain = seed::SEED.as_ref();
-    let covs = match noise {
-        Some(p) => crate::noise::seed_covs(p)?,
-        None => seed::covs(),
+    let seed = match noise {
+        Some((p, allow)) => crate::noise::seed(p, allow)?,
+        None => crate::noise::Seed::example(),
     };
+    let (chain, covs) = (seed.chain.as_ref(), seed.covs);
     let grid = surface.grid as usize;
-    let visuals = seed::visuals()?;
+    let mut visuals = seed::visuals()?;
+    visuals.fold(&seed.folds);
 
     let initial = state(
         format!("ppoe seed: frame 0/{n_frames}"),
         &chain,
-        &seed::SEED_JOINT_FRAMES,
+        &seed.home_frames,
         &seed::initial_thetas(),
         &covs,
         surface.surface,
@@ -323,7 +326,7 @@ pub fn demo(
         let s = state(
             format!("ppoe seed: frame {step}/{n_frames}"),
             &chain,
-            &seed::SEED_JOINT_FRAMES,
+            &seed.home_frames,
             &seed::thetas_at(step, n_frames),
             &covs,
             surface.surface,

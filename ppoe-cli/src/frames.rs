@@ -3,11 +3,11 @@
 //! once and the output files checked. A GIF or an HTML view of all cases makes each frame
 //! twice: once to fit the shared view, once to stream it out (see [`picture::Survey`]).
 
-use crate::args::{ChainArgs, SurfaceArgs};
+use crate::args::{ChainArgs, NoiseArgs, SurfaceArgs};
 use crate::draw::{self, level};
 use crate::names::shown;
 use crate::picture::{self, Frame};
-use crate::{cases, eval, load, output};
+use crate::{cases, eval, load, noise, output};
 use anyhow::bail;
 use ppoe::chain::ChainView;
 use ppoe::Mat6;
@@ -40,21 +40,29 @@ pub enum Sink<'a> {
     },
 }
 
-/// Reads the URDF and the cases once and checks them and the outputs, all before any
-/// computation.
+/// Reads the URDF, the noise model and the cases once and checks them and the outputs, all
+/// before any computation; with a calibrated noise model the robot's chain is the
+/// calibrated one, and the link folds ([`noise::Applied::folds`]) are returned.
 fn prepare(
     chain_args: &ChainArgs,
     input: Option<&Path>,
-    noise: Option<&Path>,
+    noise: &NoiseArgs,
     sink: &Sink<'_>,
-) -> anyhow::Result<(load::Robot, cases::Input)> {
+) -> anyhow::Result<(load::Robot, cases::Input, Vec<picture::geom::Mat4>)> {
     load::check_one_stdin(&[
         load::urdf_input(&chain_args.urdf),
         load::cases_input(input),
-        load::noise_input(noise),
+        load::noise_input(noise.noise.as_deref()),
     ])?;
-    let robot = load::robot(chain_args)?;
-    let cases = cases::load(input, noise, &robot.chain)?;
+    let mut robot = load::robot(chain_args)?;
+    let (covs, folds) = match &noise.noise {
+        Some(p) => {
+            let applied = noise::apply(p, noise.allow_rejected_noise, &mut robot.chain)?;
+            (Some(applied.covs), applied.folds)
+        }
+        None => (None, Vec::new()),
+    };
+    let cases = cases::load(input, covs)?;
     if cases.cases.is_empty() {
         bail!("the input has no cases");
     }
@@ -68,7 +76,7 @@ fn prepare(
             output::check_targets(dir, &[name.to_string()])?
         }
     }
-    Ok((robot, cases))
+    Ok((robot, cases, folds))
 }
 
 /// Reads the URDF and the cases once, checks the outputs, then computes and writes each
@@ -80,15 +88,16 @@ fn prepare(
 pub fn run(
     chain_args: &ChainArgs,
     input: Option<&Path>,
-    noise: Option<&Path>,
+    noise: &NoiseArgs,
     surface: &SurfaceArgs,
     sink: &Sink<'_>,
 ) -> anyhow::Result<()> {
     let (k, label) = level(surface)?;
     let grid = surface.grid as usize;
-    let (robot, cases) = prepare(chain_args, input, noise, sink)?;
+    let (robot, cases, folds) = prepare(chain_args, input, noise, sink)?;
     let home_frames = robot.chain.home_frames();
-    let visuals = draw::robot_visuals(&robot, &chain_args.urdf, surface)?;
+    let mut visuals = draw::robot_visuals(&robot, &chain_args.urdf, surface)?;
+    visuals.fold(&folds);
     let (joints, home) = eval::core_joints::<f64>(&robot.chain);
     let chain = ChainView {
         joints: &joints,

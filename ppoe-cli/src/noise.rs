@@ -3,6 +3,12 @@
 //! or a pipe), decoded by [`input::text`] (a byte-order mark is accepted), then parsed and
 //! its covariances checked by `ppoe-build`'s [`NoiseModel::parse`], the one reader of the
 //! format (the same the build scripts use).
+//!
+//! A fit rejected by its goodness-of-fit test (`goodness_of_fit.fits` false) is refused
+//! unless `--allow-rejected-noise`. If the fit estimated a calibration, the model's
+//! covariances belong to the calibrated chain, so every command uses that chain
+//! ([`NoiseModel::calibrated_chain`]: offsets and corrections folded into the screws and
+//! the home pose) and places the links with its folds (see [`Applied`]).
 
 use crate::{input, load};
 use anyhow::{anyhow, bail};
@@ -13,13 +19,18 @@ use std::path::{Path, PathBuf};
 /// What messages call the input.
 const WHAT: &str = "noise model";
 
-/// Reads and parses the noise model at `path` (`-`: standard input); returns it with the
-/// path that names it in generated sources and in errors (`stdin` for standard input).
+/// A row-major 4×4 homogeneous transform.
+type Mat4 = [[f64; 4]; 4];
+
+/// Reads and parses the noise model at `path` (`-`: standard input) and refuses a rejected
+/// fit unless `allow_rejected`; returns it with the path that names it in generated sources
+/// and in errors (`stdin` for standard input). The model's `sha256` is that of the bytes
+/// read (a byte-order mark included), what `sha256sum` prints for the file.
 ///
 /// # Errors
-/// Unreadable, not UTF-8, malformed, or a covariance that is not a covariance; each
-/// naming the file.
-pub fn read(path: &Path) -> anyhow::Result<(NoiseModel, PathBuf)> {
+/// Unreadable, not UTF-8, malformed, a covariance that is not a covariance, or a rejected
+/// fit; each naming the file.
+pub fn read(path: &Path, allow_rejected: bool) -> anyhow::Result<(NoiseModel, PathBuf)> {
     let source = load::read(path, WHAT)?;
     let text = input::text(&source.bytes).map_err(|e| {
         anyhow!(
@@ -28,7 +39,12 @@ pub fn read(path: &Path) -> anyhow::Result<(NoiseModel, PathBuf)> {
             e.valid_up_to()
         )
     })?;
-    let model = NoiseModel::parse(text).map_err(|e| anyhow!("{}: {e}", source.name))?;
+    let mut model = NoiseModel::parse(text).map_err(|e| anyhow!("{}: {e}", source.name))?;
+    model.sha256 = ppoe_build::codegen::sha256_hex(&source.bytes);
+    // The message names the file itself ("the fit in FILE …").
+    model
+        .check_accepted(allow_rejected, &source.name, "pass --allow-rejected-noise")
+        .map_err(|e| anyhow!("{e}"))?;
     let named = if load::is_stdin(path) {
         PathBuf::from(&source.file_name)
     } else {
@@ -37,25 +53,71 @@ pub fn read(path: &Path) -> anyhow::Result<(NoiseModel, PathBuf)> {
     Ok((model, named))
 }
 
-/// The per-joint covariances of the noise model at `path`, checked against the chain.
-///
-/// # Errors
-/// As [`read`], or a model for other joints.
-pub fn covs_for(path: &Path, robot: &RobotChain) -> anyhow::Result<Vec<[[f64; 6]; 6]>> {
-    let (model, named) = read(path)?;
-    model
-        .check_against(robot)
-        .map_err(|e| anyhow!("{}: {e}", named.display()))?;
-    Ok(model.joints.iter().map(|j| j.cov).collect())
+/// A noise model applied to a robot's chain.
+pub struct Applied {
+    /// The per-joint covariances.
+    pub covs: Vec<[[f64; 6]; 6]>,
+    /// `Fᵢ = E₁···Eᵢ` per joint ([`ppoe_build::calibration::Calibration::link_folds`]):
+    /// a link below joint i is placed by the folded chain's prefix times `Fᵢ`; empty
+    /// without a calibration.
+    pub folds: Vec<Mat4>,
 }
 
-/// The seed robot's covariances from a noise model (`demo --noise`), checked against the
-/// seed table's joint names.
+/// Reads the noise model at `path`, checks it against `robot` and replaces `robot` by the
+/// calibrated chain if the model has a calibration.
 ///
 /// # Errors
-/// As [`read`], or a model for other joints than the seed robot's.
-pub fn seed_covs(path: &Path) -> anyhow::Result<[ppoe::Mat6<f64>; 6]> {
-    let (model, named) = read(path)?;
+/// As [`read`], a model for other joints, or a calibration that cannot be folded.
+pub fn apply(path: &Path, allow_rejected: bool, robot: &mut RobotChain) -> anyhow::Result<Applied> {
+    let (model, named) = read(path, allow_rejected)?;
+    let in_file = |e: ppoe_build::Error| anyhow!("{}: {e}", named.display());
+    let calibrated = model.calibrated_chain(robot).map_err(in_file)?;
+    let folds = if model.is_calibrated() {
+        model.calibration.link_folds(robot).map_err(in_file)?
+    } else {
+        Vec::new()
+    };
+    *robot = calibrated;
+    Ok(Applied {
+        covs: model.joints.iter().map(|j| j.cov).collect(),
+        folds,
+    })
+}
+
+/// The seed robot with a noise model (`demo --noise`): the covariances, the chain (the
+/// seed table's, calibrated at run time if the model has a calibration), its joints'
+/// home frames and the link folds (as [`Applied::folds`]).
+pub struct Seed {
+    /// The joint covariances.
+    pub covs: [ppoe::Mat6<f64>; 6],
+    /// The (calibrated) chain.
+    pub chain: ppoe::chain::Chain<f64, 6>,
+    /// Its joints' home frames.
+    pub home_frames: [Mat4; 6],
+    /// The link folds; empty without a calibration.
+    pub folds: Vec<Mat4>,
+}
+
+impl Seed {
+    /// The seed example as it is: its covariances, the seed table, no calibration.
+    pub fn example() -> Self {
+        Seed {
+            covs: crate::seed::covs(),
+            chain: crate::seed::SEED,
+            home_frames: crate::seed::SEED_JOINT_FRAMES,
+            folds: Vec::new(),
+        }
+    }
+}
+
+/// The seed robot's covariances and chain from a noise model, checked against the seed
+/// table's joint names.
+///
+/// # Errors
+/// As [`read`], a model for other joints than the seed robot's, or a calibration that
+/// cannot be folded.
+pub fn seed(path: &Path, allow_rejected: bool) -> anyhow::Result<Seed> {
+    let (model, named) = read(path, allow_rejected)?;
     let names: Vec<&str> = crate::seed::SEED.joints.iter().map(|j| j.name).collect();
     let mine: Vec<&str> = model.joints.iter().map(|j| j.name.as_str()).collect();
     if names != mine {
@@ -67,5 +129,17 @@ pub fn seed_covs(path: &Path) -> anyhow::Result<[ppoe::Mat6<f64>; 6]> {
         );
     }
     let covs = model.covs();
-    Ok(std::array::from_fn(|i| covs[i]))
+    let mut out = Seed {
+        covs: std::array::from_fn(|i| covs[i]),
+        ..Seed::example()
+    };
+    if model.is_calibrated() {
+        let in_file = |e: ppoe_build::Error| anyhow!("{}: {e}", named.display());
+        let nominal = crate::seed::robot_chain();
+        let folded = model.calibration.apply(&nominal).map_err(in_file)?;
+        out.folds = model.calibration.link_folds(&nominal).map_err(in_file)?;
+        out.chain = folded.to_core_chain().map_err(in_file)?;
+        out.home_frames = std::array::from_fn(|i| folded.joints[i].home_frame);
+    }
+    Ok(out)
 }

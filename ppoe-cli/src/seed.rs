@@ -25,6 +25,30 @@ pub fn visuals() -> anyhow::Result<Visuals> {
     Ok(v)
 }
 
+/// The seed table as a host-side chain (the values it holds, its joints' home frames), for
+/// folding a calibration into it at run time (`demo --noise`).
+pub fn robot_chain() -> ppoe_build::RobotChain {
+    ppoe_build::RobotChain {
+        robot: "seed".to_string(),
+        base: SEED.base.to_string(),
+        tip: SEED.tip.to_string(),
+        joints: SEED
+            .joints
+            .iter()
+            .zip(SEED_JOINT_FRAMES)
+            .map(|(j, home_frame)| ppoe_build::ChainJoint {
+                name: j.name.to_string(),
+                kind: j.kind,
+                screw: j.screw.0,
+                lower: j.lower,
+                upper: j.upper,
+                home_frame,
+            })
+            .collect(),
+        home: SEED.home.to_matrix4(),
+    }
+}
+
 /// The seed's joint direction `thetas = [1, 1, 1, 0, 1, 0]`; its initial state is
 /// `-0.5·thetas` and frame `step` of the animation is `angle(step)·thetas`.
 pub const THETAS: [f64; 6] = [1.0, 1.0, 1.0, 0.0, 1.0, 0.0];
@@ -118,6 +142,13 @@ mod tests {
         // link1, link4, link6: one cylinder each; link2, link5: hub and segment; link3: hub.
         assert_eq!(bodies.len(), 8);
         assert_eq!(VISUALS_URDF.matches("<visual>").count(), 8);
+    }
+
+    #[test]
+    fn robot_chain_holds_the_table() {
+        let rt = runtime_chain();
+        let mine = robot_chain();
+        assert_eq!((mine.joints, mine.home), (rt.joints, rt.home));
     }
 
     #[test]

@@ -226,6 +226,19 @@ impl Visuals {
         Ok((Visuals { parts }, notices))
     }
 
+    /// The visuals of the calibrated robot: a link below the `k`-th chain joint moved by
+    /// `folds[k - 1]` (`Fₖ = E₁···Eₖ`, see [`crate::noise::Applied::folds`]), so that
+    /// [`Visuals::place`] with the folded chain's prefixes puts it where the calibrated
+    /// product `Exp(S₁''(θ₁+δ₁))···Exp(Sₖ''(θₖ+δₖ))` does. The home correction μ is not a
+    /// joint's: it moves the tool frame only, not the drawn links. No folds: unchanged.
+    pub fn fold(&mut self, folds: &[Mat4]) {
+        for p in &mut self.parts {
+            if let Some(f) = p.prefix.checked_sub(1).and_then(|k| folds.get(k)) {
+                p.home = mul4(f, &p.home);
+            }
+        }
+    }
+
     /// The visuals at a state of the arm: `prefix[k] = Exp(S₁θ₁)·…·Exp(S_kθ_k)`
     /// (`prefix[0]` the identity), one entry per chain joint plus one.
     pub fn place(&self, prefix: &[Mat4]) -> Vec<Body> {

@@ -13,6 +13,9 @@
 include!(concat!(env!("OUT_DIR"), "/seed_table.rs"));
 include!(concat!(env!("OUT_DIR"), "/gantry_table.rs"));
 include!(concat!(env!("OUT_DIR"), "/torso_table.rs"));
+// The seed robot calibrated by `OUT_DIR/seed_calibrated.json` (issue #27): the folded chain,
+// with its noise items.
+include!(concat!(env!("OUT_DIR"), "/seed_calibrated_table.rs"));
 
 /// A table generated from a random URDF robot (the `ppoe-test-robots` crate, `robots/`) with the URDF text it came
 /// from: the tests parse the text at run time and compare.

@@ -236,3 +236,51 @@ fn hostile_names_arrive_intact() {
         assert_eq!(table.home, SEED.home);
     }
 }
+
+/// The compiled table of a calibrated noise file holds bit for bit the calibrated chain
+/// ppoe-build computes at run time, and that chain is the unfolded calibrated product
+/// `Π Exp(Ad(Exp(κᵢ))·Sᵢ·(θᵢ+δᵢ)) · M · Exp(μ)` of the nominal table at random θ.
+#[test]
+fn calibrated_table_is_the_unfolded_calibrated_product() {
+    use ppoe::se3;
+    use ppoe::Vec6;
+    use tests_build::{SEED_CALIBRATED, SEED_CALIBRATED_F32};
+    let noise = concat!(env!("OUT_DIR"), "/seed_calibrated.json");
+    let rt = Config::new(urdf("seed.urdf"))
+        .base("linkmount")
+        .tip("tcp")
+        .noise(noise)
+        .chain()
+        .unwrap();
+    assert_f64_table(&SEED_CALIBRATED, &rt);
+    assert_f32_values(&SEED_CALIBRATED_F32.as_ref(), &rt);
+    assert_ne!(SEED_CALIBRATED.home, SEED.home);
+    let cal = ppoe_build::noise::NoiseModel::read(noise)
+        .unwrap()
+        .calibration;
+    let mut x = 0x1234_5678_9abc_def0_u64;
+    let mut next = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64 * 1.6 - 0.8
+    };
+    for _ in 0..50 {
+        let thetas: [f64; 6] = std::array::from_fn(|_| next());
+        let mut t = Transform::identity();
+        for (i, j) in SEED.joints.iter().enumerate() {
+            let s = se3::exp(&Vec6::from(cal.axis_corrections[i]))
+                .adjoint()
+                .mul_vec(&j.screw);
+            t = t * se3::exp(&(s * (thetas[i] + cal.offsets[i])));
+        }
+        let expected = t * SEED.home * se3::exp(&Vec6::from(cal.home_correction));
+        let got = SEED_CALIBRATED.forward_kinematics(&thetas);
+        let d = (got.translation - expected.translation).norm();
+        let r = (0..3)
+            .flat_map(|a| (0..3).map(move |b| (a, b)))
+            .map(|(a, b)| (got.rotation.0[a][b] - expected.rotation.0[a][b]).abs())
+            .fold(0.0, f64::max);
+        assert!(d < 1e-13 && r < 1e-13, "{thetas:?}: {d:e} {r:e}");
+    }
+}

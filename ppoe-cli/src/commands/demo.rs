@@ -14,9 +14,14 @@ pub struct DemoArgs {
     #[command(flatten)]
     surface: SurfaceArgs,
     /// Use the joint covariances of a noise model written by `ppoe fit` for the seed
-    /// robot instead of the example's.
+    /// robot instead of the example's; if the fit estimated a calibration, the seed's
+    /// chain is calibrated with it (at run time) too.
     #[arg(long, value_name = "FILE")]
     noise: Option<PathBuf>,
+    /// Use a noise model whose fit was rejected by its goodness-of-fit test
+    /// (goodness_of_fit.fits false) anyway; without it, such a model is an error.
+    #[arg(long, requires = "noise")]
+    allow_rejected_noise: bool,
     /// The number of animation frames, 1 to 10000 (angle = 0.5·cos(2π(0.5 + step/N))).
     /// The frames are streamed to the files (memory does not grow with N); each is
     /// computed three times (to fit the view, for the page, for the GIF).
@@ -29,5 +34,6 @@ pub struct DemoArgs {
 pub fn run(a: &DemoArgs) -> anyhow::Result<()> {
     let names = ["ppoe-seed.png", "ppoe-seed.gif", "ppoe-seed.html"].map(String::from);
     output::check_targets(&a.out, &names)?;
-    draw::demo(&a.out, &a.surface, a.frames as usize, a.noise.as_deref())
+    let noise = a.noise.as_deref().map(|p| (p, a.allow_rejected_noise));
+    draw::demo(&a.out, &a.surface, a.frames as usize, noise)
 }

@@ -1,7 +1,7 @@
 //! `ppoe eval`: the PPOE (tool pose and 6×6 covariance) for the cases of a JSON file.
 
-use crate::args::{ChainArgs, ConventionArg, EvalScalar};
-use crate::{cases, eval, load, output};
+use crate::args::{ChainArgs, ConventionArg, EvalScalar, NoiseArgs};
+use crate::{cases, eval, load, noise, output};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -22,10 +22,8 @@ pub struct EvalArgs {
     /// Indent the output JSON.
     #[arg(long)]
     pretty: bool,
-    /// Take every case's covariances from a noise model written by `ppoe fit` (the cases
-    /// then give no "covs").
-    #[arg(long, value_name = "FILE")]
-    noise: Option<PathBuf>,
+    #[command(flatten)]
+    noise: NoiseArgs,
 }
 
 /// `ppoe eval`: the results as JSON on standard output.
@@ -33,10 +31,15 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
     load::check_one_stdin(&[
         load::urdf_input(&a.chain.urdf),
         load::cases_input(a.input.as_deref()),
-        load::noise_input(a.noise.as_deref()),
+        load::noise_input(a.noise.noise.as_deref()),
     ])?;
-    let robot = load::robot(&a.chain)?;
-    let input = cases::load(a.input.as_deref(), a.noise.as_deref(), &robot.chain)?;
+    let mut robot = load::robot(&a.chain)?;
+    // The noise model first: a calibration replaces the chain the cases are checked against.
+    let covs = match &a.noise.noise {
+        Some(p) => Some(noise::apply(p, a.noise.allow_rejected_noise, &mut robot.chain)?.covs),
+        None => None,
+    };
+    let input = cases::load(a.input.as_deref(), covs)?;
     let out = eval::eval(&robot.chain, &input, a.scalar, a.convention.core())?;
     let mut text = if a.pretty {
         serde_json::to_string_pretty(&out)?

@@ -1,6 +1,6 @@
 //! `ppoe mesh`: the equiprobable surface and the skeleton of each case as a mesh file.
 
-use crate::args::{ChainArgs, SurfaceArgs};
+use crate::args::{ChainArgs, NoiseArgs, SurfaceArgs};
 use crate::frames::{self, Sink};
 use crate::{mesh, picture};
 use clap::{Args, ValueEnum};
@@ -20,9 +20,8 @@ pub struct MeshArgs {
     /// The input JSON file (the input of `ppoe eval`; default or `-`: standard input).
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
-    /// Take every case's covariances from a noise model written by `ppoe fit`.
-    #[arg(long, value_name = "FILE")]
-    noise: Option<PathBuf>,
+    #[command(flatten)]
+    noise: NoiseArgs,
     /// One file per case: ppoe-mesh-<i>.obj or ppoe-mesh-<i>.ply.
     #[arg(long, value_enum, default_value_t = MeshFormat::Obj)]
     format: MeshFormat,
@@ -49,11 +48,5 @@ pub fn run(a: &MeshArgs) -> anyhow::Result<()> {
         name: &name,
         write: &write,
     };
-    frames::run(
-        &a.chain,
-        a.input.as_deref(),
-        a.noise.as_deref(),
-        &a.surface,
-        &sink,
-    )
+    frames::run(&a.chain, a.input.as_deref(), &a.noise, &a.surface, &sink)
 }

@@ -1,7 +1,7 @@
 //! `ppoe render`: pictures of any robot and its tool-pose distribution for the cases of a
 //! JSON file.
 
-use crate::args::{ChainArgs, SurfaceArgs};
+use crate::args::{ChainArgs, NoiseArgs, SurfaceArgs};
 use crate::frames::{self, Sink};
 use crate::picture;
 use clap::{Args, ValueEnum};
@@ -23,9 +23,8 @@ pub struct RenderArgs {
     /// The input JSON file (the input of `ppoe eval`; default or `-`: standard input).
     #[arg(long, value_name = "FILE")]
     input: Option<PathBuf>,
-    /// Take every case's covariances from a noise model written by `ppoe fit`.
-    #[arg(long, value_name = "FILE")]
-    noise: Option<PathBuf>,
+    #[command(flatten)]
+    noise: NoiseArgs,
     /// png or svg: one picture per case (ppoe-render-<i>.<ext>), each written as it is
     /// computed; gif: one animation of all cases (ppoe-render.gif); html: one interactive
     /// view of all cases (ppoe-render.html). gif and html are streamed (memory does not
@@ -67,11 +66,5 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<()> {
             write: &write,
         },
     };
-    frames::run(
-        &a.chain,
-        a.input.as_deref(),
-        a.noise.as_deref(),
-        &a.surface,
-        &sink,
-    )
+    frames::run(&a.chain, a.input.as_deref(), &a.noise, &a.surface, &sink)
 }

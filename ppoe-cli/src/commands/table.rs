@@ -17,9 +17,16 @@ pub struct TableArgs {
     #[arg(long)]
     name: Option<String>,
     /// Also emit NAME_NOISE (and NAME_SIGMA2 for the joint model) from a noise model
-    /// written by `ppoe fit`.
+    /// written by `ppoe fit`. If the fit estimated a calibration, the table is the
+    /// calibrated chain's (offsets and corrections folded into the screw axes and the home
+    /// pose; its header names the noise file and its sha256), in Rust and in C (a C table
+    /// takes only the calibration: the C API takes the covariances as arguments).
     #[arg(long, value_name = "FILE")]
     noise: Option<PathBuf>,
+    /// Use a noise model whose fit was rejected by its goodness-of-fit test
+    /// (goodness_of_fit.fits false) anyway; without it, such a model is an error.
+    #[arg(long, requires = "noise")]
+    allow_rejected_noise: bool,
     /// The language: rust (`pub const` items) or c (a C99 header of `static const` data
     /// for ppoe-ffi's C API, `ppoe.h`).
     #[arg(long, value_enum, default_value_t = TableLang::Rust)]
@@ -60,10 +67,10 @@ pub fn run(a: &TableArgs) -> anyhow::Result<()> {
         TableLang::Rust => ppoe_build::Lang::Rust,
         TableLang::C => ppoe_build::Lang::C,
     };
-    if a.noise.is_some() && lang == ppoe_build::Lang::C {
-        anyhow::bail!("--noise is not supported with --lang c yet: the C API takes the covariances as arguments");
-    }
-    let model = a.noise.as_deref().map(noise::read).transpose()?;
+    let model = match &a.noise {
+        Some(p) => Some(noise::read(p, a.allow_rejected_noise)?),
+        None => None,
+    };
     let src = ppoe_build::Table {
         chain: &robot.chain,
         urdf: &robot.source.bytes,
