@@ -269,6 +269,30 @@ fn campaign_needs_and_gets_calibration() {
         );
         assert!((d - want).abs() < 3.0 * se, "{j}");
     }
+    // Baked: the table of the calibrated chain, naming the file; eval --noise uses it.
+    let noise = dir.join("noise.json");
+    std::fs::write(&noise, v.to_string()).unwrap();
+    let t = ppoe(&["table", "--noise", noise.to_str().unwrap(), "--name", "ARM"]);
+    let src = String::from_utf8_lossy(&t.stdout);
+    assert!(t.status.success(), "{}", String::from_utf8_lossy(&t.stderr));
+    assert!(src.contains("// Calibrated:") && src.contains("`noise.json`"), "{src}");
+    let plain = ppoe(&["table", "--name", "ARM"]);
+    assert_ne!(plain.stdout, t.stdout, "the offsets move the screws");
+    // The uncalibrated fit of the same data was rejected: refused unless forced.
+    let (_, rejected, _) = fit_json(&dir, &input, &[]);
+    std::fs::write(&noise, rejected.to_string()).unwrap();
+    let t = ppoe(&["table", "--noise", noise.to_str().unwrap(), "--name", "ARM"]);
+    let err = String::from_utf8_lossy(&t.stderr);
+    assert!(!t.status.success() && err.contains("rejected"), "{err}");
+    let forced = [
+        "table",
+        "--noise",
+        noise.to_str().unwrap(),
+        "--allow-rejected-noise",
+        "--name",
+        "ARM",
+    ];
+    assert!(ppoe(&forced).status.success());
     let _ = std::fs::remove_dir_all(&dir);
 }
 
