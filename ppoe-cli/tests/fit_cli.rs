@@ -275,7 +275,10 @@ fn campaign_needs_and_gets_calibration() {
     let t = ppoe(&["table", "--noise", noise.to_str().unwrap(), "--name", "ARM"]);
     let src = String::from_utf8_lossy(&t.stdout);
     assert!(t.status.success(), "{}", String::from_utf8_lossy(&t.stderr));
-    assert!(src.contains("// Calibrated:") && src.contains("`noise.json`"), "{src}");
+    assert!(
+        src.contains("// Calibrated:") && src.contains("`noise.json`"),
+        "{src}"
+    );
     let plain = ppoe(&["table", "--name", "ARM"]);
     assert_ne!(plain.stdout, t.stdout, "the offsets move the screws");
     // The uncalibrated fit of the same data was rejected: refused unless forced.
