@@ -13,7 +13,7 @@ use ppoe_build::{Config, ErrorKind, RobotChain};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
-type M4 = [[f64; 4]; 4];
+use ppoe_test_robots::matrix4::{exp, inv, mul, M4};
 
 /// The chains of `tests/codegen.rs` (revolute, continuous, prismatic, fixed joints between).
 const CHAINS: &[(&str, &str, &str)] = &[
@@ -24,69 +24,6 @@ const CHAINS: &[(&str, &str, &str)] = &[
     ("rpy_everywhere.urdf", "base", "tool"),
     ("tree.urdf", "base_footprint", "left_tip"),
 ];
-
-fn mul(a: &M4, b: &M4) -> M4 {
-    let mut c = [[0.0; 4]; 4];
-    for (i, row) in c.iter_mut().enumerate() {
-        for (j, x) in row.iter_mut().enumerate() {
-            *x = (0..4).map(|k| a[i][k] * b[k][j]).sum();
-        }
-    }
-    c
-}
-
-/// The inverse of a rigid transform `[[R, p], [0, 1]]`: `[[Rᵀ, −Rᵀp], [0, 1]]`.
-fn inv(a: &M4) -> M4 {
-    let mut b = [
-        [0.0, 0.0, 0.0, 0.0],
-        [0.0; 4],
-        [0.0; 4],
-        [0.0, 0.0, 0.0, 1.0],
-    ];
-    for i in 0..3 {
-        for j in 0..3 {
-            b[i][j] = a[j][i];
-        }
-        b[i][3] = -(0..3).map(|k| a[k][i] * a[k][3]).sum::<f64>();
-    }
-    b
-}
-
-/// `Exp(ξ)` of a twist ξ = (ω, v), rotation first, by its power series (30 terms of
-/// the 4×4 matrix exponential, exact to rounding for the small and moderate twists here).
-fn exp(xi: &[f64; 6]) -> M4 {
-    let [wx, wy, wz, vx, vy, vz] = *xi;
-    let x = [
-        [0.0, -wz, wy, vx],
-        [wz, 0.0, -wx, vy],
-        [-wy, wx, 0.0, vz],
-        [0.0; 4],
-    ];
-    // Scaling and squaring keeps the series short and accurate for |ξ| up to a few.
-    let norm = xi.iter().map(|a| a.abs()).fold(0.0, f64::max);
-    let squarings = (norm.log2().ceil() as i32).saturating_add(4).clamp(0, 60);
-    let s = 0.5f64.powi(squarings);
-    let xs = x.map(|r| r.map(|a| a * s));
-    let mut out = [
-        [1.0, 0.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0, 0.0],
-        [0.0, 0.0, 1.0, 0.0],
-        [0.0, 0.0, 0.0, 1.0],
-    ];
-    let mut term = out;
-    for k in 1..30 {
-        term = mul(&term, &xs).map(|r| r.map(|a| a / k as f64));
-        for (o, t) in out.iter_mut().zip(&term) {
-            for (a, b) in o.iter_mut().zip(t) {
-                *a += b;
-            }
-        }
-    }
-    for _ in 0..squarings {
-        out = mul(&out, &out);
-    }
-    out
-}
 
 /// xorshift64*: reproducible numbers in [-1, 1) without a dependency.
 struct Rng(u64);

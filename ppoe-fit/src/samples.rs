@@ -95,13 +95,35 @@ pub(crate) fn transports(
     (ads, g, clipped)
 }
 
+/// Sample `k`'s joint values: one per joint, finite.
+pub(crate) fn check_thetas(
+    k: usize,
+    thetas: &[f64],
+    joints: &[Joint<f64>],
+) -> Result<(), FitError> {
+    if thetas.len() != joints.len() {
+        return Err(FitError::WrongLength {
+            sample: k,
+            got: thetas.len(),
+            expected: joints.len(),
+        });
+    }
+    if let Some(i) = thetas.iter().position(|t| !t.is_finite()) {
+        let name = joints[i].name;
+        return Err(FitError::NonFinite {
+            sample: k,
+            what: format!("the value of joint {i} ('{name}')"),
+        });
+    }
+    Ok(())
+}
+
 /// Validates every sample and computes η and the transports.
 pub(crate) fn prepare(
     joints: &[Joint<f64>],
     home: &Transform<f64>,
     samples: &[Sample],
 ) -> Result<Prepared, FitError> {
-    let n = joints.len();
     let mut out = Prepared {
         eta: Vec::with_capacity(samples.len()),
         transports: Vec::with_capacity(samples.len()),
@@ -112,20 +134,7 @@ pub(crate) fn prepare(
         clipped: 0,
     };
     for (k, s) in samples.iter().enumerate() {
-        if s.thetas.len() != n {
-            return Err(FitError::WrongLength {
-                sample: k,
-                got: s.thetas.len(),
-                expected: n,
-            });
-        }
-        if let Some(i) = s.thetas.iter().position(|t| !t.is_finite()) {
-            let name = joints[i].name;
-            return Err(FitError::NonFinite {
-                sample: k,
-                what: format!("the value of joint {i} ('{name}')"),
-            });
-        }
+        check_thetas(k, &s.thetas, joints)?;
         let measured = rigid(k, &s.pose)?;
         let (ads, g, clipped) = transports(joints, home, &s.thetas);
         out.clipped += usize::from(clipped);

@@ -13,24 +13,13 @@ fn check<'a>(
     home: &'a Transform<f64>,
     samples: &[CampaignSample],
 ) -> Result<Campaign<'a>, FitError> {
-    let n = joints.len();
     let position = matches!(
         samples.first().map(|s| &s.measurement),
         Some(Measurement::Position(_))
     );
     let (mut poses, mut points) = (Vec::new(), Vec::new());
     for (k, s) in samples.iter().enumerate() {
-        if s.thetas.len() != n {
-            return Err(FitError::WrongLength {
-                sample: k,
-                got: s.thetas.len(),
-                expected: n,
-            });
-        }
-        if let Some(i) = s.thetas.iter().position(|t| !t.is_finite()) {
-            let what = format!("the value of joint {i} ('{}')", joints[i].name);
-            return Err(FitError::NonFinite { sample: k, what });
-        }
+        check_thetas(k, &s.thetas, joints)?;
         match (&s.measurement, position) {
             (Measurement::Pose(m), false) => poses.push(rigid(k, m)?),
             (Measurement::Position(p), true) => {

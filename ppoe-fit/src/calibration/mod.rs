@@ -32,7 +32,7 @@ pub use systematic::{chi2_sf, SystematicTest};
 use crate::error::FitError;
 use crate::param::Model;
 use crate::run::{fit_with, Fit};
-use crate::samples::{rigid, transports, Sample};
+use crate::samples::{check_thetas, rigid, transports, Sample};
 use nalgebra::{Matrix6, Vector3};
 use ppoe::chain::Joint;
 use ppoe::{Transform, Vec3};

@@ -14,6 +14,7 @@
 #![deny(missing_docs)]
 
 pub mod hostile;
+pub mod matrix4;
 pub mod skeleton;
 
 /// xorshift64*: enough randomness for test inputs, no dependency.
