@@ -156,14 +156,15 @@ pub(crate) fn fit_with(
 ) -> Result<Fit, FitError> {
     check_chain(joints, home)?;
     let n = joints.len();
-    let needed = 10.max(if model == Model::Joint { n + 2 } else { 21 * n });
-    if samples.len() < needed {
-        return Err(FitError::TooFewSamples {
-            got: samples.len(),
-            needed,
-        });
-    }
-    let data = prepare(joints, home, samples)?;
+    let needed = check_count(samples.len(), n, model)?;
+    let prepared = prepare(joints, home, samples)?;
+    // Position-only: the rotation rows of every transport zeroed, so Σ's rotation block is
+    // R's alone (the padding) and the likelihood, its moments and the rank are exactly
+    // the translations' 3-D ones; the prediction error keeps the whole Σ.
+    let (data, unmasked) = match position_pad {
+        Some(_) => (translation_rows(&prepared), Some(prepared)),
+        None => (prepared, None),
+    };
     // The floor only where Σ could be singular: no positive definite R.
     let with_floor = model == Model::Joint && r.cholesky().is_none();
     let param = Param {
@@ -172,10 +173,16 @@ pub(crate) fn fit_with(
         floor_min: with_floor.then(|| floor_min(&data)).transpose()?,
     };
     let design = Design::new(&data, model == Model::Joint, with_floor, r);
-    let theta0 = start(&data, &design, &param, position_pad);
+    let theta0 = start(&design, &param, position_pad);
     let names = natural_names(joints, model, with_floor);
-    let (_, determinable) =
-        identifiability_check(&design, &param, &theta0, joints, home, r, &names)?;
+    let (_, determinable) = identifiability_check(
+        &design,
+        &param,
+        &theta0,
+        (joints, home),
+        (r, position_pad.is_some()),
+        &names,
+    )?;
     let out = if model == Model::Full {
         full_rounds(&design, &param, theta0, progress)?
     } else {
@@ -195,7 +202,13 @@ pub(crate) fn fit_with(
     } else {
         x.clone()
     };
-    let prediction = prediction_error(&design, &joints_only, n, &unit_cov);
+    let prediction = match &unmasked {
+        Some(full) => {
+            let full = Design::new(full, model == Model::Joint, with_floor, r);
+            prediction_error(&full, &joints_only, n, &unit_cov)
+        }
+        None => prediction_error(&design, &joints_only, n, &unit_cov),
+    };
     let d = match position_pad {
         Some(_) => position_distances(&design, &x),
         None => distances(&design, &x, &m.mahalanobis, with_floor),
@@ -225,28 +238,25 @@ pub(crate) fn fit_with(
     Ok(fit)
 }
 
+/// The fewest samples a model of `n` joints needs (returned), or the error for fewer.
+pub(crate) fn check_count(samples: usize, n: usize, model: Model) -> Result<usize, FitError> {
+    let needed = 10.max(if model == Model::Joint { n + 2 } else { 21 * n });
+    if samples < needed {
+        return Err(FitError::TooFewSamples {
+            got: samples,
+            needed,
+        });
+    }
+    Ok(needed)
+}
+
 /// The starting parameters: the method of moments' estimates made admissible.
-fn start(
-    data: &Prepared,
-    design: &Design,
-    param: &Param,
-    position_pad: Option<f64>,
-) -> DVector<f64> {
-    let Some(_) = position_pad else {
-        return param.start(&method_of_moments(design, param));
-    };
-    // Position-only: the padded rotation block (ηηᵀ − R = −V·I there) would dominate the
-    // least squares, so the moments of the translation block only.
-    let masked = translation_rows(data);
-    let mut rt = design.r;
-    rt.fixed_view_mut::<3, 3>(0, 0).fill(0.0);
-    let floor = param.floor_min.is_some();
-    let d = Design::new(&masked, param.model == Model::Joint, floor, rt);
-    let mut theta0 = param.start(&method_of_moments(&d, param));
-    if let Some(min) = param.floor_min {
-        // The floor's rotation variance is invisible beside the padded block: held at its
-        // bound (the active set keeps it there), since a step in a direction without
-        // information would swamp the step of every other parameter.
+fn start(design: &Design, param: &Param, position_pad: Option<f64>) -> DVector<f64> {
+    let mut theta0 = param.start(&method_of_moments(design, param));
+    if let (Some(_), Some(min)) = (position_pad, param.floor_min) {
+        // Position-only: the floor's rotation variance is invisible beside the padded
+        // block; held at its bound (the active set keeps it there), since a step in a
+        // direction without information would swamp the step of every other parameter.
         theta0[param.n] = min[0].ln();
     }
     theta0
@@ -394,9 +404,8 @@ fn identifiability_check(
     design: &Design,
     param: &Param,
     theta0: &DVector<f64>,
-    joints: &[Joint<f64>],
-    home: &Transform<f64>,
-    r: Matrix6<f64>,
+    (joints, home): (&[Joint<f64>], &Transform<f64>),
+    (r, position): (Matrix6<f64>, bool),
     names: &[String],
 ) -> Result<(Information, usize), FitError> {
     let x0 = param.coeffs(theta0);
@@ -422,6 +431,11 @@ fn identifiability_check(
         clipped: 0,
     };
     let floor = param.floor_min.is_some();
+    let spread = if position {
+        translation_rows(&spread)
+    } else {
+        spread
+    };
     let best = natural(&Design::new(&spread, param.model == Model::Joint, floor, r))?;
     if data.rank < best.rank {
         let missing: Vec<&str> = (0..names.len())

@@ -149,3 +149,58 @@ fn wrong_model_is_flagged() {
         f.warnings
     );
 }
+
+/// A campaign's bad inputs are errors before any closed form runs: no samples, too few,
+/// poses mixed with positions (naming the first sample of the other kind), a measurement
+/// covariance of the other kind.
+#[test]
+fn campaign_errors() {
+    use ppoe::chain::screw_noise;
+    use ppoe_fit::{fit_campaign, CampaignSample, Estimate, Measurement, MeasurementCov};
+    let (joints, home) = seed();
+    let truth: Vec<_> = joints.iter().map(|j| screw_noise(&j.screw, 1e-6)).collect();
+    let samples: Vec<CampaignSample> = simulate::samples(&joints, &home, &truth, None, 40, 5)
+        .into_iter()
+        .map(|s| CampaignSample {
+            thetas: s.thetas,
+            measurement: Measurement::Pose(s.pose),
+        })
+        .collect();
+    let fit = |s: &[CampaignSample], cov: Option<&MeasurementCov>| {
+        fit_campaign(
+            &joints,
+            &home,
+            s,
+            cov,
+            Model::Joint,
+            Estimate::ALL,
+            &mut |_, _| {},
+        )
+    };
+    for k in [0, 1, 3] {
+        assert!(
+            matches!(
+                fit(&samples[..k], None),
+                Err(FitError::TooFewSamples { .. })
+            ),
+            "{k}"
+        );
+    }
+    let mut mixed = samples.clone();
+    mixed[17].measurement = Measurement::Position([0.1, 0.2, 0.3]);
+    assert_eq!(
+        fit(&mixed, None).unwrap_err(),
+        FitError::MixedMeasurements { sample: 17 }
+    );
+    let wrong = MeasurementCov::Position([[1e-8, 0.0, 0.0], [0.0, 1e-8, 0.0], [0.0, 0.0, 1e-8]]);
+    assert!(matches!(
+        fit(&samples, Some(&wrong)),
+        Err(FitError::BadMeasurementCov(_))
+    ));
+    let mut nan = samples.clone();
+    nan[3].measurement = Measurement::Pose([[f64::NAN; 4]; 4]);
+    assert!(matches!(
+        fit(&nan, None),
+        Err(FitError::NonFinite { sample: 3, .. })
+    ));
+}

@@ -280,6 +280,8 @@ pub fn fit_campaign(
     estimate: Estimate,
     progress: &mut dyn FnMut(usize, f64),
 ) -> Result<CampaignFit, FitError> {
+    // Before any closed form: they need samples to work on.
+    crate::run::check_count(samples.len(), joints.len(), model)?;
     let c = check(joints, home, samples)?;
     let position = matches!(c.data, Data::Positions(_));
     let r = measurement_r(measurement_cov, position)?;
