@@ -543,6 +543,20 @@ fn warnings(
         ));
     }
     w.extend(prediction_warning(fit));
+    let large: Vec<&str> = fit
+        .joints
+        .iter()
+        .filter(|j| j.cov[0][0] + j.cov[1][1] + j.cov[2][2] > LARGE_ROTATION_VARIANCE)
+        .map(|j| j.name.as_str())
+        .collect();
+    if !large.is_empty() {
+        w.push(format!(
+            "joints [{}] have a fitted rotation noise above 0.1 rad: far beyond where the \
+             second-order model holds (check the input's units, the joint order and the \
+             tracker's frame: data this far from the kinematics are not noise)",
+            large.join(", ")
+        ));
+    }
     if clipped > 0 {
         w.push(format!(
             "{clipped} samples had a joint value outside its limits (clipped, as the PPOE clips)"
@@ -579,6 +593,10 @@ fn warnings(
     }
     w
 }
+
+/// A joint's rotation variance (trace of its covariance's rotation block, rad²) above
+/// this, σ > 0.1 rad, is beyond the second-order model (the crate docs' Accuracy).
+const LARGE_ROTATION_VARIANCE: f64 = 0.01;
 
 /// A median prediction error above this is worth a warning, and how many samples would
 /// bring it to `PREDICTION_TARGET`.
