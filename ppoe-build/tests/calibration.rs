@@ -14,6 +14,7 @@ use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
 use ppoe_test_robots::matrix4::{exp, inv, mul, M4};
+use ppoe_test_robots::Rng;
 
 /// The chains of `tests/codegen.rs` (revolute, continuous, prismatic, fixed joints between).
 const CHAINS: &[(&str, &str, &str)] = &[
@@ -25,21 +26,9 @@ const CHAINS: &[(&str, &str, &str)] = &[
     ("tree.urdf", "base_footprint", "left_tip"),
 ];
 
-/// xorshift64*: reproducible numbers in [-1, 1) without a dependency.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let x = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
-        x as f64 / (1u64 << 52) as f64 - 1.0
-    }
-
-    fn vec6(&mut self, scale: f64) -> [f64; 6] {
-        std::array::from_fn(|_| scale * self.next())
-    }
+/// Six uniform values in [−scale, scale].
+fn vec6(rng: &mut Rng, scale: f64) -> [f64; 6] {
+    std::array::from_fn(|_| rng.uniform(scale))
 }
 
 /// A calibration: δ per joint, κ per joint, μ.
@@ -51,9 +40,9 @@ struct Cal {
 
 fn random_cal(n: usize, rng: &mut Rng) -> Cal {
     Cal {
-        offsets: (0..n).map(|_| 0.05 * rng.next()).collect(),
-        kappas: (0..n).map(|_| rng.vec6(0.02)).collect(),
-        mu: rng.vec6(0.02),
+        offsets: (0..n).map(|_| rng.uniform(0.05)).collect(),
+        kappas: (0..n).map(|_| vec6(rng, 0.02)).collect(),
+        mu: vec6(rng, 0.02),
     }
 }
 
@@ -143,7 +132,7 @@ fn max_diff(a: &M4, b: &M4) -> f64 {
 #[test]
 fn calibrated_chain_is_the_unfolded_calibrated_product() {
     let dir = tmp("product");
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
     for (file, base, tip) in CHAINS {
         let nominal = config(file, base, tip).chain().unwrap();
         let n = nominal.joints.len();
@@ -157,7 +146,7 @@ fn calibrated_chain_is_the_unfolded_calibrated_product() {
             let folded = config(file, base, tip).noise(&path).chain().unwrap();
             assert_ne!(folded, nominal, "{file}: the calibration changed nothing");
             for _ in 0..10 {
-                let thetas: Vec<f64> = (0..n).map(|_| 2.0 * rng.next()).collect();
+                let thetas: Vec<f64> = (0..n).map(|_| rng.uniform(2.0)).collect();
                 let (a, b) = (
                     product(&folded, &thetas),
                     calibrated_product(&nominal, &cal, &thetas),
@@ -178,7 +167,7 @@ fn calibrated_chain_is_the_unfolded_calibrated_product() {
 #[test]
 fn calibrated_table_is_the_calibrated_chains_and_says_so() {
     let dir = tmp("table");
-    let mut rng = Rng(42);
+    let mut rng = Rng::new(42);
     for (file, base, tip) in CHAINS {
         let nominal = config(file, base, tip).chain().unwrap();
         let cal = random_cal(nominal.joints.len(), &mut rng);
@@ -266,7 +255,7 @@ fn zero_calibration_changes_no_byte() {
 fn rejected_fits_are_refused_unless_allowed() {
     let dir = tmp("rejected");
     let chain = config("seed.urdf", "linkmount", "tcp").chain().unwrap();
-    let cal = random_cal(6, &mut Rng(7));
+    let cal = random_cal(6, &mut Rng::new(7));
     let rejected = write(
         &dir,
         "rejected.json",

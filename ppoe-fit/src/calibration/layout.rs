@@ -137,10 +137,6 @@ fn perpendicular(w: &Vec3<f64>) -> (Vec3<f64>, Vec3<f64>) {
     (u, w.cross(&u))
 }
 
-fn twist(a: Vec3<f64>, b: Vec3<f64>) -> Vec6<f64> {
-    Vec6::from([a.0[0], a.0[1], a.0[2], b.0[0], b.0[1], b.0[2]])
-}
-
 /// The twists that move joint `j`'s axis (see the module docs), each tagged with whether
 /// it changes the axis's direction.
 fn axis_basis(j: &Joint<f64>) -> Vec<(Vec6<f64>, bool)> {
@@ -148,27 +144,27 @@ fn axis_basis(j: &Joint<f64>) -> Vec<(Vec6<f64>, bool)> {
     let zero = Vec3::from([0.0; 3]);
     if j.kind == JointKind::Prismatic {
         let (u1, u2) = perpendicular(&(v * (1.0 / v.norm())));
-        return vec![(twist(u1, zero), true), (twist(u2, zero), true)];
+        return vec![
+            (Vec6::from_parts(u1, zero), true),
+            (Vec6::from_parts(u2, zero), true),
+        ];
     }
     // The axis point nearest the origin, q = ω × v (unit ω); a rotation about the line
     // through q along u is the twist (u, q × u).
     let q = w.cross(&v);
     let (u1, u2) = perpendicular(&w);
     vec![
-        (twist(u1, q.cross(&u1)), true),
-        (twist(u2, q.cross(&u2)), true),
-        (twist(zero, u1), false),
-        (twist(zero, u2), false),
+        (Vec6::from_parts(u1, q.cross(&u1)), true),
+        (Vec6::from_parts(u2, q.cross(&u2)), true),
+        (Vec6::from_parts(zero, u1), false),
+        (Vec6::from_parts(zero, u2), false),
     ]
 }
 
-/// The Lie bracket `ad_a·b = (ωa × ωb, ωa × vb + va × ωb)`: how screw b changes when
+/// The Lie bracket `ad(a)·b` (the core's `se3::curly_hat`): how screw b changes when
 /// twist a moves it.
 fn bracket(a: &Vec6<f64>, b: &Vec6<f64>) -> Vector6<f64> {
-    let (wa, va, wb, vb) = (a.rotation(), a.translation(), b.rotation(), b.translation());
-    let w = wa.cross(&wb);
-    let v = wa.cross(&vb) + va.cross(&wb);
-    Vector6::new(w.0[0], w.0[1], w.0[2], v.0[0], v.0[1], v.0[2])
+    Vector6::from(se3::curly_hat(a).mul_vec(b).0)
 }
 
 /// Consecutive revolute joints with parallel axes (see `Layout::parallel_pairs`).
@@ -222,7 +218,10 @@ fn gauged_basis(joints: &[Joint<f64>], i: usize, estimate: &Estimate) -> Vec<Vec
         gauges.push(joints[i - 1].screw);
     }
     if i == 1 && estimate.base && joints[0].kind != JointKind::Prismatic {
-        gauges.push(twist(Vec3::from([0.0; 3]), joints[0].screw.rotation()));
+        gauges.push(Vec6::from_parts(
+            Vec3::from([0.0; 3]),
+            joints[0].screw.rotation(),
+        ));
     }
     for g in gauges {
         basis = without_motion(&basis, &joints[i].screw, &g);
@@ -270,15 +269,11 @@ fn without_motion(
     for k in (0..group.len()).filter(|&k| eig.eigenvalues[k] > 0.5) {
         let mut b = Vec6::zeros();
         for (&g, coef) in group.iter().zip(eig.eigenvectors.column(k).iter()) {
-            b = add(&b, &(basis[g].0 * *coef));
+            b += basis[g].0 * *coef;
         }
         out.push((b, rot));
     }
     out
-}
-
-fn add(a: &Vec6<f64>, b: &Vec6<f64>) -> Vec6<f64> {
-    Vec6::from(std::array::from_fn(|i| a.0[i] + b.0[i]))
 }
 
 impl Layout {
@@ -367,13 +362,13 @@ impl Layout {
         let (mut s, _) = self.block("kinematics");
         for (i, basis) in self.bases.iter().enumerate() {
             for b in basis {
-                out.kappa[i] = add(&out.kappa[i], &(*b * p[s]));
+                out.kappa[i] += *b * p[s];
                 s += 1;
             }
         }
         let (s, l) = self.block("home");
         if l > 0 {
-            out.mu = add(&at.mu, &v6(s));
+            out.mu = at.mu + v6(s);
         }
         out
     }

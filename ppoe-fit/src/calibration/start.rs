@@ -53,20 +53,9 @@ fn mean(ts: impl Iterator<Item = Transform<f64>>) -> Transform<f64> {
     transform(&nearest_rotation(&r), &(t / k.max(1.0)))
 }
 
-/// The rotation vector of `r` (axis·angle), from its skew part and trace.
-fn rotation_vector(r: &Matrix3<f64>) -> Vector3<f64> {
-    let w = Vector3::new(
-        r[(2, 1)] - r[(1, 2)],
-        r[(0, 2)] - r[(2, 0)],
-        r[(1, 0)] - r[(0, 1)],
-    );
-    let s = 0.5 * w.norm();
-    let c = 0.5 * (r.trace() - 1.0);
-    let angle = s.atan2(c);
-    if s < 1e-12 {
-        return Vector3::zeros();
-    }
-    w * (angle / (2.0 * s))
+/// The rotation vector of `r` (axis·angle): the core's `so3::log`, exact up to a half turn.
+fn rotation_vector(r: &Mat3<f64>) -> Vector3<f64> {
+    v3(&ppoe::so3::log(r))
 }
 
 /// Y from `Tₖ = X·Fₖ·Y` (both unknown), pairs (k, k + K/2).
@@ -81,7 +70,7 @@ fn hand_eye(f: &[Transform<f64>], t: &[Transform<f64>]) -> Transform<f64> {
     // α = R_Y·β: R_Y maximises Σ αᵀ·R·β, the Procrustes problem on H = Σ α·βᵀ.
     let mut h = Matrix3::zeros();
     for (a, b) in &pairs {
-        h += rotation_vector(&na3(&a.rotation)) * rotation_vector(&na3(&b.rotation)).transpose();
+        h += rotation_vector(&a.rotation) * rotation_vector(&b.rotation).transpose();
     }
     let ry = nearest_rotation(&h);
     // (R_A − I)·t_Y = R_Y·t_B − t_A, stacked.
