@@ -329,7 +329,58 @@ fn arm7_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     });
 }
 
+/// Configurations in one batch of the batch benchmarks (`batch_*`); bench_report.py divides
+/// the batch's time by it.
+const BATCH: usize = 256;
+
+/// `BATCH` configurations of `n` joints, row-major, uniform in [−1, 1] (inside every limit
+/// of the seed and the 7-joint arm), from a fixed seed.
+fn batch_thetas<T: Real>(n: usize) -> Vec<T> {
+    let mut x = 0x9e37_79b9_7f4a_7c15u64;
+    (0..BATCH * n)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            T::lit((x >> 11) as f64 / (1u64 << 52) as f64 - 1.0)
+        })
+        .collect()
+}
+
+/// The batch PPOE against single calls and the nalgebra port, dense covariances on every
+/// joint (`robots::arm7_covs`), on the seed and the 7-joint arm: `batch_<robot>/<impl>/<T>`,
+/// `batch` timing one call on `BATCH` configurations, the others one configuration.
+fn batch_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
+    let t = ty::<T>();
+    let seed = seed_chain::<T>(&golden_seed());
+    let arm7 = robots::core_chain::<T>(&robots::robot_chain(&robots::ARM7));
+    for (name, (joints, home)) in [("seed", seed), ("7dof", arm7)] {
+        let chain = ChainView {
+            joints: &joints,
+            home,
+        };
+        let n = joints.len();
+        let covs = robots::arm7_covs::<T>(n);
+        let thetas = batch_thetas::<T>(n);
+        let mut out = vec![UncertainPose::certain(Transform::identity()); BATCH];
+        c.bench_function(&format!("batch_{name}/batch/{t}"), |b| {
+            b.iter(|| chain.ppoe_batch(black_box(&thetas), &covs, Convention::Right, &mut out))
+        });
+        let one = &thetas[..n];
+        c.bench_function(&format!("batch_{name}/single/{t}"), |b| {
+            b.iter(|| chain.ppoe(black_box(one), &covs, Convention::Right))
+        });
+        let (na, na_covs) = nalgebra_inputs(&joints, home, &covs);
+        check_nalgebra(&chain, &na, one, &covs, &na_covs);
+        c.bench_function(&format!("batch_{name}/nalgebra/{t}"), |b| {
+            b.iter(|| baseline_nalgebra::ppoe(&na, black_box(one), &na_covs))
+        });
+    }
+}
+
 fn all(c: &mut Criterion) {
+    batch_ops::<f64>(c);
+    batch_ops::<f32>(c);
     core_ops::<f64>(c);
     core_ops::<f32>(c);
     ppoe_ops::<f64>(c);

@@ -30,4 +30,4 @@
 pub use crate::calibration::fold_calibration;
 pub use crate::joint::{bending_noise, screw_noise, Joint, JointConstants, JointKind};
 pub use crate::kinematics::{Chain, ChainView};
-pub use crate::ppoe::{dense_covariances, Convention, UncertainPose};
+pub use crate::ppoe::{dense_covariances, BatchError, Convention, UncertainPose};

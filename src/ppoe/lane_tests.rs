@@ -28,7 +28,7 @@ use crate::se3::{self, Transform};
 
 const F64_BOUND: f64 = 1e-14;
 const F32_BOUND: f64 = 1e-5;
-const CONVENTIONS: [Convention; 3] = [
+pub(super) const CONVENTIONS: [Convention; 3] = [
     Convention::Right,
     Convention::Left,
     Convention::Pytransform3d,
@@ -36,10 +36,10 @@ const CONVENTIONS: [Convention; 3] = [
 
 /// A fixed-seed generator of uniform numbers in [−1, 1) (xorshift64*): the same cases on
 /// every run and target.
-struct Rng(u64);
+pub(super) struct Rng(pub(super) u64);
 
 impl Rng {
-    fn next(&mut self) -> f64 {
+    pub(super) fn next(&mut self) -> f64 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;
         self.0 ^= self.0 >> 27;
@@ -83,7 +83,7 @@ fn random_joint<T: Real>(rng: &mut Rng, i: usize) -> Joint<T> {
 }
 
 /// A random positive semi-definite covariance `L·Lᵀ` of size ~1e-3.
-fn random_cov<T: Real>(rng: &mut Rng) -> Mat6<T> {
+pub(super) fn random_cov<T: Real>(rng: &mut Rng) -> Mat6<T> {
     let l: [[f64; 6]; 6] = core::array::from_fn(|_| core::array::from_fn(|_| rng.next()));
     Matrix(core::array::from_fn(|r| {
         core::array::from_fn(|c| T::lit(1e-3 * (0..6).map(|k| l[r][k] * l[c][k]).sum::<f64>()))
@@ -92,7 +92,11 @@ fn random_cov<T: Real>(rng: &mut Rng) -> Mat6<T> {
 
 /// A random chain of `n` joints (with their displacement constants if `prepared`) and a
 /// home pose within 1 m.
-fn random_chain<T: Real>(rng: &mut Rng, n: usize, prepared: bool) -> (Vec<Joint<T>>, Transform<T>) {
+pub(super) fn random_chain<T: Real>(
+    rng: &mut Rng,
+    n: usize,
+    prepared: bool,
+) -> (Vec<Joint<T>>, Transform<T>) {
     let joints = (0..n)
         .map(|i| random_joint::<T>(rng, i))
         .map(|j| if prepared { j.prepared() } else { j })
@@ -101,7 +105,7 @@ fn random_chain<T: Real>(rng: &mut Rng, n: usize, prepared: bool) -> (Vec<Joint<
     (joints, se3::exp(&xi))
 }
 
-fn flat<T: Real>(pose: &Transform<T>, cov: &Mat6<T>) -> [Vec<f64>; 2] {
+pub(super) fn flat<T: Real>(pose: &Transform<T>, cov: &Mat6<T>) -> [Vec<f64>; 2] {
     let mut p: Vec<f64> = pose
         .rotation
         .0
@@ -117,7 +121,7 @@ fn flat<T: Real>(pose: &Transform<T>, cov: &Mat6<T>) -> [Vec<f64>; 2] {
 }
 
 /// `max|a − b| / max|b|`, 0 when both are equal.
-fn rel_to_max(a: &[f64], b: &[f64]) -> f64 {
+pub(super) fn rel_to_max(a: &[f64], b: &[f64]) -> f64 {
     let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let diff = a
         .iter()

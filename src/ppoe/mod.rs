@@ -12,11 +12,16 @@ use crate::scalar::Real;
 use crate::se3::Transform;
 use crate::uncertainty::{check_covariance, concat_globally, Order};
 
+mod batch;
+#[cfg(test)]
+mod batch_tests;
 #[cfg(test)]
 mod lane_tests;
+mod packed;
 mod rank1;
 mod schedule;
 
+pub use batch::BatchError;
 pub use rank1::dense_covariances;
 
 /// Test-only door to the schedules of other targets, for the `lanes_ratio` benchmark.

@@ -75,7 +75,7 @@ const SIMD128: bool = cfg!(any(
 
 /// How many transports the PPOE computes side by side for scalar `T` on this target (see
 /// the module doc): as many as fill one 128-bit SIMD register (f32: 4, f64: 2), else 1.
-const fn lanes<T: Real>() -> usize {
+pub(super) const fn lanes<T: Real>() -> usize {
     match core::mem::size_of::<T>() {
         4 if SIMD128 => 4,
         8 if SIMD128 => 2,
@@ -280,7 +280,7 @@ fn tip_frame<T: Real, const W: usize>(
 /// Whether every entry of `cov` is zero (a joint without noise): its transport adds
 /// nothing. NaN is not zero, so a non-finite covariance is still transported.
 #[inline(always)]
-fn is_zero<T: Real>(cov: &Mat6<T>) -> bool {
+pub(super) fn is_zero<T: Real>(cov: &Mat6<T>) -> bool {
     // The diagonal first: a joint with noise has a non-zero variance, so the scan
     // usually stops within six entries.
     cov.0

@@ -64,12 +64,32 @@ impl<T: Real, const W: usize> Pack<T, W> {
     /// The pack whose lane k is `f(k)`.
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // lane k from f(k)
-    fn gather(f: impl Fn(usize) -> T) -> Self {
+    pub(crate) fn gather(f: impl Fn(usize) -> T) -> Self {
         let mut a = [T::ZERO; W];
         for k in 0..W {
             a[k] = f(k);
         }
         Pack(a)
+    }
+}
+
+impl<T: Real, const W: usize> Pack<T, W> {
+    /// `x` in every lane.
+    #[inline(always)]
+    pub(crate) fn splat(x: T) -> Self {
+        Pack([x; W])
+    }
+}
+
+impl<T: Real, const W: usize> core::ops::Neg for Pack<T, W> {
+    type Output = Self;
+    /// Lane-wise negation (exact, as the scalar's: `-0` for `0`).
+    #[inline(always)]
+    fn neg(mut self) -> Self {
+        for a in self.0.iter_mut() {
+            *a = -*a;
+        }
+        self
     }
 }
 
@@ -153,7 +173,12 @@ impl<T: Real> Congruence<T> {
 /// products), then the block rotations; every stage writes its block out before the next
 /// starts, which keeps few values live (fewer register spills than rotating first).
 #[inline(always)]
-fn transport_lower<L: Lane>(r: &[[L; 3]; 3], q: &[L; 3], c: &[[L; 6]; 6], acc: &mut [[L; 6]; 6]) {
+pub(crate) fn transport_lower<L: Lane>(
+    r: &[[L; 3]; 3],
+    q: &[L; 3],
+    c: &[[L; 6]; 6],
+    acc: &mut [[L; 6]; 6],
+) {
     // Shear: E = Q·A + Bᵀ (lower left) and E·Qᵀ + Q·B + D (lower right) for the blocks
     // Σ = [[A, B], [Bᵀ, D]]; B is read from the upper-right block.
     let mut x = [[L::zero(); 6]; 6];

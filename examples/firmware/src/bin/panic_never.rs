@@ -228,6 +228,20 @@ fn chains<T: Real>(seed: &Chain<T, 6>) {
     let s2s: &[T] = bb(&s2);
     sink(view.ppoe_rank1(ths, s2s, conv));
     sink(view.ppoe_rank1_checked(ths, s2s, conv));
+    // The batch calls on two configurations (opaque lengths).
+    let rows: [T; 12] = bb(core::array::from_fn(|i| th[i % 6]));
+    let each: [Mat6<T>; 12] = bb(core::array::from_fn(|i| covs[i % 6]));
+    let rs: &[T] = bb(&rows);
+    let es: &[Mat6<T>] = bb(&each);
+    let mut poses = [chain::UncertainPose::certain(Transform::identity()); 2];
+    let ps: &mut [chain::UncertainPose<T>] = bb(&mut poses);
+    sink(view.ppoe_batch(rs, cs, conv, ps));
+    sink(view.ppoe_batch_checked(rs, cs, conv, ps));
+    sink(view.ppoe_batch_per_config(rs, es, conv, ps));
+    sink(view.ppoe_batch_per_config_checked(rs, es, conv, ps));
+    sink(view.ppoe_rank1_batch(rs, s2s, conv, ps));
+    sink(view.ppoe_rank1_batch_checked(rs, s2s, conv, ps));
+    sink(poses);
     sink(chain::screw_noise(&j.screw, bb(T::HALF)));
     sink(chain::bending_noise(&v3::<T>(), &m3()));
     sink(Matrix::<T, 6, 6>::identity().cholesky());
