@@ -4,7 +4,7 @@
 use crate::args::EvalScalar;
 use crate::cases::{check_counts, Case, Input};
 use anyhow::bail;
-use ppoe::chain::{ChainView, Convention, Joint};
+use ppoe::chain::{ChainView, Convention, Joint, UncertainPose};
 use ppoe::{Mat6, Real, Transform};
 use ppoe_build::RobotChain;
 use serde::Serialize;
@@ -149,6 +149,10 @@ pub fn named_covariance_error<T: Real>(
     })
 }
 
+/// Every case in one batch call of the core (`ppoe_batch_per_config_checked`: each case has
+/// its own covariances); a case whose result it rejects is evaluated again alone
+/// ([`eval_case`]) for an error that names the case and the joint. The batch's result for a
+/// case does not depend on the other cases (the core's batch docs).
 fn eval_cases<T: Real>(
     robot: &RobotChain,
     input: &Input,
@@ -160,13 +164,36 @@ fn eval_cases<T: Real>(
         joints: &joints,
         home,
     };
+    let lit = |x: &f64| T::lit(*x);
+    let thetas: Vec<T> = input.cases.iter().flat_map(|c| c.thetas.iter().map(lit)).collect();
+    let covs: Vec<Mat6<T>> = input
+        .cases
+        .iter()
+        .flat_map(|c| c.covs.iter().map(|m| Mat6::from(m.map(|r| r.map(T::lit)))))
+        .collect();
+    let mut tips = vec![UncertainPose::certain(Transform::identity()); input.cases.len()];
+    if let Err(e) = chain.ppoe_batch_per_config_checked(&thetas, &covs, convention, &mut tips) {
+        let i = e.config.unwrap_or(0);
+        return Err(match input.cases.get(i) {
+            Some(case) => eval_case(&chain, i, case, convention)
+                .err()
+                .unwrap_or_else(|| anyhow::anyhow!("case {i}: {}", e.error)),
+            None => anyhow::anyhow!("{e}"),
+        });
+    }
+    let n = joints.len();
+    let clip_continuous = convention == Convention::Pytransform3d;
     let mut out = Vec::with_capacity(input.cases.len());
-    for (i, case) in input.cases.iter().enumerate() {
-        let (clipped, pose, cov) = eval_case(&chain, i, case, convention)?;
+    for (i, tip) in tips.iter().enumerate() {
+        let mut clipped = vec![T::ZERO; n];
+        let row = thetas.get(i * n..(i + 1) * n).unwrap_or_default();
+        chain
+            .clip(row, &mut clipped, clip_continuous)
+            .map_err(|e| anyhow::anyhow!("case {i}: {e}"))?;
         let result = CaseOut {
             thetas_clipped: clipped.iter().map(|x| Real::to_f64(*x)).collect(),
-            pose: pose.to_matrix4().map(|r| r.map(<T as Real>::to_f64)),
-            cov: cov.0.map(|r| r.map(<T as Real>::to_f64)),
+            pose: tip.pose.to_matrix4().map(|r| r.map(<T as Real>::to_f64)),
+            cov: tip.cov.0.map(|r| r.map(<T as Real>::to_f64)),
         };
         check_finite(i, &result)?;
         out.push(result);

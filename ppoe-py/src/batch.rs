@@ -1,13 +1,13 @@
 //! The PPOE and forward kinematics of a batch of configurations on a chain, in f64 or
-//! f32, with the GIL released. Each configuration is one call of the core, so a batch's
-//! results equal the single calls' bit for bit.
+//! f32, with the GIL released. The PPOE is the core's batch call, whose result for a
+//! configuration does not depend on the batch it is in: a batch's results equal the
+//! single calls' (batches of one) bit for bit.
 
-use crate::convert::{array, elements, mat6s, matrix, push_matrix, push_transform};
+use crate::convert::{array, elements, mat6s, push_matrix, push_transform};
 use crate::{core_err, PpoeError};
 use numpy::{Element, PyArrayDyn, PyReadonlyArrayDyn, PyUntypedArrayMethods};
-use ppoe::chain::{ChainView, Convention};
-use ppoe::uncertainty::check_covariance;
-use ppoe::{Error, Mat6, Real};
+use ppoe::chain::{ChainView, Convention, UncertainPose};
+use ppoe::{Error, Real, Transform};
 use pyo3::prelude::*;
 
 /// An array of the chain's scalar.
@@ -63,8 +63,12 @@ pub(crate) fn ppoe<'py, T: Real + Element + Send + Sync>(
     ))
 }
 
-/// The PPOE of every configuration: `covs` holds n covariances shared by all (checked
-/// once), or n per configuration. Writes 16 + 36 values per configuration.
+/// The PPOE of every configuration through the core's checked batch call
+/// (`ppoe_batch_checked`, or `ppoe_batch_per_config_checked` when `covs` holds n
+/// covariances per configuration rather than n shared by all): a configuration's result
+/// does not depend on the batch it is in, so a single configuration (a batch of one) and
+/// the same configuration in any batch agree bit for bit. Writes 16 + 36 values per
+/// configuration.
 fn ppoe_all<T: Real>(
     view: ChainView<'_, T>,
     count: usize,
@@ -73,35 +77,22 @@ fn ppoe_all<T: Real>(
     shared: bool,
     convention: Convention,
 ) -> Result<(Vec<T>, Vec<T>), PyErr> {
-    let n = view.joints.len();
-    let mut per = vec![Mat6::zeros(); n];
-    if shared {
-        per = mat6s(covs);
-        for c in &per {
-            check_covariance(c).map_err(core_err)?;
-        }
-    }
+    let per = mat6s(covs);
+    let mut out = vec![UncertainPose::certain(Transform::identity()); count];
+    let done = if shared {
+        view.ppoe_batch_checked(thetas, &per, convention, &mut out)
+    } else {
+        view.ppoe_batch_per_config_checked(thetas, &per, convention, &mut out)
+    };
+    done.map_err(|e| match e.config {
+        Some(i) => batch_err(i, e.error),
+        None => core_err(e.error),
+    })?;
     let (mut poses, mut out_covs) = (
         Vec::with_capacity(16 * count),
         Vec::with_capacity(36 * count),
     );
-    for i in 0..count {
-        if !shared {
-            for (k, c) in per.iter_mut().enumerate() {
-                *c = matrix(covs, 36 * (i * n + k));
-                check_covariance(c).map_err(|e| batch_err(i, e))?;
-            }
-        }
-        let th = &thetas[i * n..(i + 1) * n];
-        if !th.iter().all(|t| t.is_finite()) {
-            return Err(batch_err(i, Error::NonFinite));
-        }
-        let r = view
-            .ppoe(th, &per, convention)
-            .map_err(|e| batch_err(i, e))?;
-        if !(r.cov.is_finite() && r.pose.rotation.is_finite() && r.pose.translation.is_finite()) {
-            return Err(batch_err(i, Error::Overflow));
-        }
+    for r in &out {
         push_transform(&mut poses, &r.pose);
         push_matrix(&mut out_covs, &r.cov);
     }
