@@ -148,6 +148,18 @@ else
   echo '{"error": "skipped (--no-python)"}' >"$OUT/pytransform3d.json"
 fi
 
+# --- 3b. the Python package's batch (the wheel of scripts/python-check.sh) -------------------
+PY_CHECK_VENV=$ROOT/target/python-check/venv
+if [ $PYTHON = 1 ] && [ -x "$PY_CHECK_VENV/bin/python" ] &&
+   "$PY_CHECK_VENV/bin/python" -c "import ppoe, pytransform3d" 2>/dev/null; then
+  echo "---- Python package batch (ppoe-py/benches/batch.py)"
+  "$PY_CHECK_VENV/bin/python" ppoe-py/benches/batch.py >"$OUT/python_batch.json" ||
+    echo '{"error": "ppoe-py/benches/batch.py failed"}' >"$OUT/python_batch.json"
+  cat "$OUT/python_batch.json"
+else
+  echo '{"error": "no wheel venv: run scripts/python-check.sh first (or --no-python)"}' >"$OUT/python_batch.json"
+fi
+
 # --- 4. fit benchmark ----------------------------------------------------------------------
 if [ $FIT = 0 ]; then
   echo "error: skipped (--no-fit)" >"$OUT/fit_bench.txt"

@@ -327,6 +327,63 @@ def render_robots(crit, pin_text, ir):
     return L
 
 
+# Configurations per call of the batch benchmarks (benches/ops.rs, BATCH).
+BATCH = 256
+
+
+def batch_ns(crit, key, impl, t):
+    """ns per configuration of the batch benchmarks: the batch call's time / BATCH."""
+    v = crit.get("batch_%s/%s/%s" % (key, impl, t))
+    return None if v is None else (v / BATCH if impl == "batch" else v)
+
+
+def render_batch(crit, pin_text):
+    """Batch PPOE per configuration against single calls, the nalgebra port and Pinocchio's
+    FK, dense covariances on every joint (benches/ops.rs, batch_ops)."""
+    pin = pinocchio_ns(pin_text)
+    L = ["## Batch PPOE: many configurations per call, dense covariances on every joint", ""]
+    L.append("`ChainView::ppoe_batch` on %d configurations (uniform in [−1, 1] per joint) per call, its" % BATCH)
+    L.append("time divided by %d, against a single `ChainView::ppoe` call, the dense nalgebra port and" % BATCH)
+    L.append("Pinocchio's rigid FK (from the Pinocchio run above), ns per configuration (criterion medians);")
+    L.append("every joint has a full-rank covariance (`robots::arm7_covs`), right perturbation, default target.")
+    L.append("")
+    L.append("| robot | scalar | batch PPOE / config | single PPOE | nalgebra port PPOE | Pinocchio FK f64 | batch / Pinocchio FK | single / batch | nalgebra / single |")
+    L.append("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+    for robot, key, pkey in (("seed", "seed", "seed"), ("7-joint arm", "7dof", "arm7")):
+        for t in ("f64", "f32"):
+            b, s1, na = (batch_ns(crit, key, i, t) for i in ("batch", "single", "nalgebra"))
+            pf = pin.get(pkey)
+            L.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                robot, t, ns(b), ns(s1), ns(na), ns(pf), ratio(b, pf), ratio(s1, b), ratio(na, s1)))
+    L.append("")
+    return L
+
+
+def render_python_batch(pb, m):
+    """The Python package's batch of 10,000 seed configurations (ppoe-py/benches/batch.py)."""
+    L = ["## Python package: a batch of 10,000 seed configurations (ppoe-py/benches/batch.py)", ""]
+    if not pb or "error" in pb:
+        L += ["Not measured in this run (%s)." % ((pb or {}).get("error", "no result")), ""]
+        return L
+    L.append("From the same run, with the wheel of `scripts/python-check.sh` (its venv,")
+    L.append("`target/python-check/venv`: pytransform3d 3.17.0 and numpy from PyPI); load average %s" %
+             " ".join("%.2f" % x for x in pb.get("load_average", [])))
+    L.append("when it started. Seed robot, joint values uniform in [−1, 1]⁶, the seed example's joint")
+    L.append("covariances, `convention=\"pytransform3d\"`; microseconds per configuration, medians of repeats:")
+    L.append("")
+    L.append("| implementation | µs / configuration | pytransform3d's example is slower by |")
+    L.append("|---|---:|---:|")
+    ex = pb["pytransform3d_example_us"]
+    rows = (("**ppoe batch**: one `probabilistic_forward_kinematics` call, thetas (10000, 6), covs (6, 6, 6) shared, GIL released", "ppoe_batch_us"),
+            ("ppoe batch with covs (10000, 6, 6, 6), each checked symmetric PSD", "ppoe_batch_per_config_covs_us"),
+            ("Python loop of single ppoe calls", "ppoe_loop_us"))
+    for name, k in rows:
+        L.append("| %s | %.3f | %.0f× |" % (name, pb[k], ex / pb[k]))
+    L.append("| pytransform3d 3.17.0 example `probabilistic_forward_kinematics` (timed on 200 of the configurations) | %.1f | — |" % ex)
+    L.append("")
+    return L
+
+
 def render_rank1(crit):
     L = ["## Rank-1 PPOE against the dense PPOE (benches/rank1.rs)", ""]
     L.append("`ChainView::ppoe_rank1` (one variance per joint along its screw axis) and the dense")
@@ -399,6 +456,14 @@ def target_rows(crit, pin_text):
                  q(crit.get("ppoe_%s/nalgebra/f64" % key), p64))
         at_most("host PPOE f32/f64 time, %s" % robot, 1, q(p32, p64))
         at_most("host f64 PPOE / Pinocchio FK, %s" % robot, 0.8, q(p64, pin.get(pkey)))
+    for robot, key, pkey in (("seed", "seed", "seed"), ("7-joint arm", "7dof", "arm7")):
+        b = lambda i, t: batch_ns(crit, key, i, t)
+        at_most("host f64 batch PPOE per configuration / Pinocchio FK, dense, %s" % robot, 1.0,
+                q(b("batch", "f64"), pin.get(pkey)))
+        at_least("host f64 single PPOE vs the nalgebra port, dense, %s" % robot, 3,
+                 q(b("nalgebra", "f64"), b("single", "f64")))
+        at_most("host f32/f64 time, dense, single call, %s" % robot, 1, q(b("single", "f32"), b("single", "f64")))
+        at_most("host f32/f64 time, dense, batch, %s" % robot, 1, q(b("batch", "f32"), b("batch", "f64")))
     for robot, key in (("seed", "seed"), ("7-joint arm", "7dof")):
         for t in ("f64", "f32"):
             at_least("host rank-1 PPOE vs dense, %s, %s" % (robot, t), 1.5,
@@ -489,6 +554,8 @@ def render(d):
     p("f32 / f64 time ratio of the PPOE: %s (below 1 means f32 is faster)." % ratio(s32, s64))
     p("")
     L.extend(render_robots(crit, pin_text, (cg or {}).get("ir_per_call", {})))
+    L.extend(render_batch(crit, pin_text))
+    L.extend(render_python_batch(load(os.path.join(d, "python_batch.json")), m))
     L.extend(render_rank1(crit))
     L.extend(render_fit(fit_text).splitlines())
     # ---- chains
@@ -772,6 +839,8 @@ def render(d):
     p("")
     # ---- firmware targets: kept from BENCHMARKS.md as it was (it names its own run)
     kept = (read_text(os.path.join(d, "firmware_targets.md")) or "").strip()
+    # The sections after it are this run's (the Python package's batch is rendered above).
+    kept = kept.split("\n## Python package")[0].strip()
     if kept:
         p(kept)
     else:
