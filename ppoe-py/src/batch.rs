@@ -63,12 +63,16 @@ pub(crate) fn ppoe<'py, T: Real + Element + Send + Sync>(
     ))
 }
 
-/// The PPOE of every configuration through the core's checked batch call
+/// Configurations per call of the core: the results of one call sit in a buffer on the
+/// stack before they are written to the output arrays, which are touched once.
+const CHUNK: usize = 64;
+
+/// The PPOE of every configuration through the core's checked batch calls
 /// (`ppoe_batch_checked`, or `ppoe_batch_per_config_checked` when `covs` holds n
-/// covariances per configuration rather than n shared by all): a configuration's result
-/// does not depend on the batch it is in, so a single configuration (a batch of one) and
-/// the same configuration in any batch agree bit for bit. Writes 16 + 36 values per
-/// configuration.
+/// covariances per configuration rather than n shared by all), `CHUNK` configurations at a
+/// time: a configuration's result does not depend on the batch it is in, so a single
+/// configuration (a batch of one) and the same configuration in any batch agree bit for
+/// bit. Writes 16 + 36 values per configuration.
 fn ppoe_all<T: Real>(
     view: ChainView<'_, T>,
     count: usize,
@@ -77,24 +81,30 @@ fn ppoe_all<T: Real>(
     shared: bool,
     convention: Convention,
 ) -> Result<(Vec<T>, Vec<T>), PyErr> {
+    let n = view.joints.len();
     let per = mat6s(covs);
-    let mut out = vec![UncertainPose::certain(Transform::identity()); count];
-    let done = if shared {
-        view.ppoe_batch_checked(thetas, &per, convention, &mut out)
-    } else {
-        view.ppoe_batch_per_config_checked(thetas, &per, convention, &mut out)
-    };
-    done.map_err(|e| match e.config {
-        Some(i) => batch_err(i, e.error),
-        None => core_err(e.error),
-    })?;
     let (mut poses, mut out_covs) = (
         Vec::with_capacity(16 * count),
         Vec::with_capacity(36 * count),
     );
-    for r in &out {
-        push_transform(&mut poses, &r.pose);
-        push_matrix(&mut out_covs, &r.cov);
+    let mut buf = [UncertainPose::certain(Transform::identity()); CHUNK];
+    for first in (0..count).step_by(CHUNK) {
+        let rows = CHUNK.min(count - first);
+        let (th, out) = (&thetas[first * n..(first + rows) * n], &mut buf[..rows]);
+        let done = if shared {
+            view.ppoe_batch_checked(th, &per, convention, out)
+        } else {
+            let c = &per[first * n..(first + rows) * n];
+            view.ppoe_batch_per_config_checked(th, c, convention, out)
+        };
+        done.map_err(|e| match e.config {
+            Some(i) => batch_err(first + i, e.error),
+            None => core_err(e.error),
+        })?;
+        for r in out.iter() {
+            push_transform(&mut poses, &r.pose);
+            push_matrix(&mut out_covs, &r.cov);
+        }
     }
     Ok((poses, out_covs))
 }
