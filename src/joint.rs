@@ -264,6 +264,13 @@ impl<T: Real> Joint<T> {
         self.constants
     }
 
+    /// [`Joint::constants`] by reference: the batch PPOE reads them in place (a copy of the
+    /// whole `Option`, written field by field, made its vector reads wait on the writes).
+    #[inline(always)]
+    pub(crate) fn constants_ref(&self) -> Option<&JointConstants<T>> {
+        self.constants.as_ref()
+    }
+
     /// The joint with its displacement constants computed ([`JointConstants::of`] of the
     /// screw; `None` for a joint that does not rotate): the fast path of
     /// [`Joint::displacement`] for chains built at run time.

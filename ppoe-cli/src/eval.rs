@@ -165,7 +165,11 @@ fn eval_cases<T: Real>(
         home,
     };
     let lit = |x: &f64| T::lit(*x);
-    let thetas: Vec<T> = input.cases.iter().flat_map(|c| c.thetas.iter().map(lit)).collect();
+    let thetas: Vec<T> = input
+        .cases
+        .iter()
+        .flat_map(|c| c.thetas.iter().map(lit))
+        .collect();
     let covs: Vec<Mat6<T>> = input
         .cases
         .iter()

@@ -183,7 +183,10 @@ pub(super) fn displacement<T: Real, const W: usize>(
     j: &Joint<T>,
     theta: Pack<T, W>,
 ) -> Poses<T, W> {
-    match j.constants().or_else(|| JointConstants::of(&j.screw)) {
+    if let Some(k) = j.constants_ref() {
+        return constants_displacement(k, theta);
+    }
+    match JointConstants::of(&j.screw) {
         Some(k) => constants_displacement(&k, theta),
         None => Poses::gather(|k| j.displacement(get(&theta, k))),
     }
@@ -197,12 +200,10 @@ fn constants_displacement<T: Real, const W: usize>(
 ) -> Poses<T, W> {
     let sp = Pack::splat;
     let t = theta * sp(k.scale);
-    let (mut s, mut c) = (sp(T::ZERO), sp(T::ZERO));
-    for l in 0..W {
-        let (sl, cl) = get(&t, l).sin_cos_r();
-        set(&mut s, l, sl);
-        set(&mut c, l, cl);
-    }
+    // Whole packs from the W results (not lane by lane into zeroed packs, whose vector
+    // reads would wait on the scalar writes).
+    let sc: [(T, T); W] = core::array::from_fn(|l| get(&t, l).sin_cos_r());
+    let (s, c) = (Pack(sc.map(|x| x.0)), Pack(sc.map(|x| x.1)));
     let one = sp(T::ONE);
     let omc = one - c;
     let ([x, y, z], [dx, dy, dz], [xy, xz, yz]) = (k.axis, k.axis_sq, k.axis_prod);
