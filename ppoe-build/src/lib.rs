@@ -201,7 +201,12 @@ pub struct Config {
     name: Option<String>,
     noise: Option<PathBuf>,
     allow_rejected_noise: bool,
+    joint_sigmas: Option<Vec<f64>>,
 }
+
+/// What names [`Config::joint_sigmas`] in errors and in the table's comment, where a noise
+/// file's name would be.
+const JOINT_SIGMAS: &str = "Config::joint_sigmas";
 
 impl Config {
     /// A builder for the URDF file at `urdf` (relative paths are relative to the current
@@ -216,6 +221,7 @@ impl Config {
             name: None,
             noise: None,
             allow_rejected_noise: false,
+            joint_sigmas: None,
         }
     }
 
@@ -262,6 +268,17 @@ impl Config {
     /// test is refused unless [`Config::allow_rejected_noise`].
     pub fn noise(&mut self, fit_result: impl AsRef<Path>) -> &mut Self {
         self.noise = Some(fit_result.as_ref().to_path_buf());
+        self
+    }
+
+    /// A noise model from a datasheet instead of a fit: one σ per moving joint of the
+    /// chain, base to tip (radians for revolute and continuous joints, metres for prismatic
+    /// ones; σ, not σ²), baked as `NAME_NOISE[i] = σᵢ²·SᵢSᵢᵀ` (Sᵢ the joint's screw axis in
+    /// the base frame, [`ppoe::chain::screw_noise`]) and `NAME_SIGMA2`
+    /// ([`noise::NoiseModel::from_sigmas`]). Setting it with [`Config::noise`] is an error
+    /// when the table is generated: the noise comes one way.
+    pub fn joint_sigmas(&mut self, sigmas: &[f64]) -> &mut Self {
+        self.joint_sigmas = Some(sigmas.to_vec());
         self
     }
 
@@ -314,6 +331,24 @@ impl Config {
         }
     }
 
+    /// The noise model of [`Config::noise`] (read and checked to be accepted) or of
+    /// [`Config::joint_sigmas`] (for `chain`), with the path that names it.
+    fn noise_for(&self, chain: &RobotChain) -> Result<Option<(noise::NoiseModel, &Path)>> {
+        let Some(sigmas) = &self.joint_sigmas else {
+            return self.noise_model();
+        };
+        let named = Path::new(JOINT_SIGMAS);
+        if self.noise.is_some() {
+            return Err(Error::new(
+                ErrorKind::Config,
+                "both Config::noise and Config::joint_sigmas are set: give the noise one way",
+            )
+            .in_file(named));
+        }
+        let model = noise::NoiseModel::from_sigmas(chain, sigmas).map_err(|e| e.in_file(named))?;
+        Ok(Some((model, named)))
+    }
+
     /// The noise model ([`Config::noise`]) read and checked to be accepted, with its path.
     fn noise_model(&self) -> Result<Option<(noise::NoiseModel, &Path)>> {
         let Some(path) = &self.noise else {
@@ -342,7 +377,7 @@ impl Config {
         let bytes = self.read()?;
         let chain = self.chain_from(&bytes)?;
         let model = self
-            .noise_model()?
+            .noise_for(&chain)?
             .filter(|(model, _)| lang == Lang::Rust || model.is_calibrated());
         let file_name = self.urdf.file_name().map(|s| s.to_string_lossy());
         Table {
