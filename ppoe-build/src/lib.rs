@@ -442,17 +442,28 @@ impl Config {
     }
 }
 
-/// Writes `bytes` to a temporary file next to `path`, then renames it over `path`, so that
-/// a reader (a concurrent build, an interrupted one) never sees a partial table.
+/// Writes `bytes` to a temporary file next to `path` (tempfile's, in the same directory),
+/// then renames it over `path`, so that a reader (a concurrent build, an interrupted one)
+/// never sees a partial table; on an error the temporary file is removed and `path` is
+/// left as it was.
 fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(format!(".tmp{}", std::process::id()));
-    let tmp = PathBuf::from(tmp);
-    std::fs::write(&tmp, bytes)
-        .and_then(|()| std::fs::rename(&tmp, path))
-        .inspect_err(|_| {
-            let _ = std::fs::remove_file(&tmp);
-        })
+    use std::io::Write as _;
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".ppoe-build-tmp-");
+    // The mode a plain `fs::write` gives (0o666 less the umask), not tempfile's 0o600.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let mut tmp = builder.tempfile_in(dir)?;
+    tmp.write_all(bytes)?;
+    tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
 }
 
 impl Config {
@@ -470,5 +481,45 @@ impl Config {
     /// [`codegen_c::C_API_MAX_JOINTS`] joints.
     pub fn generate_c(&self) -> Result<String> {
         self.generate_lang(Lang::C)
+    }
+}
+
+#[cfg(test)]
+mod write_tests {
+    use super::write_atomically;
+
+    #[test]
+    fn replaces_by_rename_and_fails_without_a_trace() {
+        let dir = std::env::temp_dir().join(format!("ppoe-build-write-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("arm.rs");
+        std::fs::write(&path, b"old").unwrap();
+        // A second name for the old file: a rename leaves it alone.
+        std::fs::hard_link(&path, dir.join("old.rs")).unwrap();
+        write_atomically(&path, b"new").unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"new");
+        assert_eq!(std::fs::read(dir.join("old.rs")).unwrap(), b"old");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let plain = dir.join("plain");
+            std::fs::write(&plain, b"").unwrap();
+            let mode = |p: &std::path::Path| std::fs::metadata(p).unwrap().permissions().mode();
+            assert_eq!(mode(&path), mode(&plain));
+            std::fs::remove_file(&plain).unwrap();
+        }
+        // A directory in the way: an error, and nothing left behind.
+        let blocked = dir.join("sub");
+        std::fs::create_dir(&blocked).unwrap();
+        assert!(write_atomically(&blocked, b"x").is_err());
+        assert!(blocked.is_dir());
+        let mut names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        names.sort();
+        assert_eq!(names, ["arm.rs", "old.rs", "sub"]);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
