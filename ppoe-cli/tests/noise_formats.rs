@@ -295,3 +295,88 @@ fn pretty_prints_a_matrix_row_per_line() {
     assert_eq!((rows(6), rows(4)), (2 + 2 * 6, 4 + 2 * 4), "{text}");
     assert!(text.lines().count() < 60, "{text}");
 }
+
+/// The numbers of the demo's printed initial pose (4 rows after its title).
+fn demo_pose(extra: &[&str], name: &str) -> Vec<String> {
+    let dir = fresh_dir(name);
+    let mut args = vec![
+        "demo",
+        "--frames",
+        "1",
+        "--grid",
+        "2",
+        "--out",
+        dir.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let out = run(&args);
+    success(&out);
+    String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .skip_while(|l| !l.starts_with("initial pose"))
+        .skip(1)
+        .take(4)
+        .flat_map(|l| {
+            let cells = l.trim().trim_matches(['[', ']']);
+            cells
+                .split(',')
+                .map(|x| x.trim().to_string())
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+#[test]
+fn demo_prints_six_significant_digits_unless_asked() {
+    let full = demo_pose(&["--precision", "full"], "demo-full");
+    let short = demo_pose(&[], "demo-default");
+    let three = demo_pose(&["--precision", "3"], "demo-three");
+    assert_eq!((full.len(), short.len(), three.len()), (16, 16, 16));
+    for ((f, s), t) in full.iter().zip(&short).zip(&three) {
+        let x: f64 = f.parse().unwrap();
+        // Full: 17 significant digits, so the value reads back as itself.
+        let mantissa = |v: &str| {
+            v.split('e')
+                .next()
+                .unwrap()
+                .trim_start_matches('-')
+                .replace('.', "")
+                .len()
+        };
+        assert_eq!(
+            (mantissa(f), mantissa(s), mantissa(t)),
+            (17, 6, 3),
+            "{f} {s} {t}"
+        );
+        let (sv, tv): (f64, f64) = (s.parse().unwrap(), t.parse().unwrap());
+        assert!((sv - x).abs() <= 5e-6 * x.abs().max(1e-300), "{s} vs {f}");
+        assert!((tv - x).abs() <= 5e-3 * x.abs().max(1e-300), "{t} vs {f}");
+    }
+    for bad in ["0", "18", "x", "-1"] {
+        let dir = fresh_dir("demo-bad-precision");
+        let out = run(&["demo", "--precision", bad, "--out", dir.to_str().unwrap()]);
+        let e = one_line_error(&out, 2);
+        assert!(e.contains("--precision"), "{e}");
+    }
+}
+
+#[test]
+fn demo_takes_joint_sigmas_for_the_seed() {
+    let dir = fresh_dir("demo-sigma");
+    let out = run(&[
+        "demo",
+        "--joint-sigma",
+        "1e-3,1e-3",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let e = one_line_error(&out, 1);
+    assert!(
+        e.contains("2 joint sigmas") && e.contains("6 moving joints (joint1, joint2"),
+        "{e}"
+    );
+    // Zero noise: a zero covariance, printed as zeros.
+    let zero = demo_pose(&["--joint-sigma", "0,0,0,0,0,0"], "demo-sigma-zero");
+    assert_eq!(zero.len(), 16);
+}

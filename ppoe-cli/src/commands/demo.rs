@@ -41,7 +41,8 @@ pub struct DemoArgs {
     frames: u32,
     /// Significant digits of the printed pose and covariances: a number from 1 to 17, or
     /// `full` (17: every value reads back exactly).
-    #[arg(long, value_name = "DIGITS|full", default_value = "6", value_parser = precision)]
+    #[arg(long, value_name = "DIGITS|full", default_value = "6", value_parser = precision,
+          allow_negative_numbers = true)]
     precision: Precision,
 }
 
