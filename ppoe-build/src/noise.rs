@@ -190,12 +190,25 @@ impl NoiseModel {
     /// `cov` are not touched; a second call changes nothing.
     ///
     /// # Errors
-    /// As [`NoiseModel::check_against`].
+    /// As [`NoiseModel::check_against`]; [`ErrorKind::NonFinite`] naming the joint if
+    /// `σ²·SᵢSᵢᵀ` overflows.
     pub fn resolve(&mut self, chain: &RobotChain) -> Result<()> {
         self.check_against(chain)?;
         for &i in &self.from_sigma2 {
             let j = &mut self.joints[i];
-            j.cov = screw_cov(&chain.joints[i].screw, j.sigma2.unwrap_or(0.0));
+            let cov = screw_cov(&chain.joints[i].screw, j.sigma2.unwrap_or(0.0));
+            // A huge σ² on a screw far from the origin overflows: an error, not a table of inf.
+            if cov.iter().flatten().any(|x| !x.is_finite()) {
+                return Err(Error::new(
+                    ErrorKind::NonFinite,
+                    format!(
+                        "noise model: joint {i} ('{}'): σ²·SSᵀ is not finite (sigma2 {})",
+                        j.name,
+                        j.sigma2.unwrap_or(0.0)
+                    ),
+                ));
+            }
+            j.cov = cov;
         }
         self.from_sigma2.clear();
         Ok(())

@@ -150,3 +150,15 @@ fn config_joint_sigmas_bakes_the_same_table_as_a_sigma2_file() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn an_overflowing_sigma2_is_an_error_naming_the_joint() {
+    let mut far = chain();
+    // The pitch axis 10 m up: v = q × ω = (−10, 0, 0), so σ²·v₀² = 1e307·100 overflows.
+    far.joints[0].screw = [0.0, 1.0, 0.0, -10.0, 0.0, 0.0];
+    let text = r#"{"joints": [{"name": "pitch", "sigma2": 1e307}, {"name": "lift", "sigma2": 0}]}"#;
+    let mut m = NoiseModel::parse(text).unwrap();
+    let e = m.resolve(&far).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::NonFinite);
+    assert!(e.to_string().contains("joint 0 ('pitch')"), "{e}");
+}
