@@ -380,3 +380,41 @@ fn demo_takes_joint_sigmas_for_the_seed() {
     let zero = demo_pose(&["--joint-sigma", "0,0,0,0,0,0"], "demo-sigma-zero");
     assert_eq!(zero.len(), 16);
 }
+
+/// `mesh` and `render` take `--joint-sigma` through the same path as `eval`: the same mesh
+/// as with the hand-made covariances.
+#[test]
+fn mesh_with_joint_sigma_is_the_mesh_of_the_hand_made_covariances() {
+    let dir = setup("mesh-sigma");
+    let urdf = dir.join("two.urdf");
+    let mesh = |input: &str, extra: &[&str], out: &str| {
+        let out_dir = dir.join(out);
+        let input = dir.join(input);
+        let mut a = vec![
+            "mesh",
+            "--urdf",
+            urdf.to_str().unwrap(),
+            "--base",
+            "base",
+            "--tip",
+            "tool",
+            "--input",
+            input.to_str().unwrap(),
+            "--format",
+            "obj",
+            "--grid",
+            "4",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ];
+        a.extend_from_slice(extra);
+        success(&run(&a));
+        std::fs::read(out_dir.join("ppoe-mesh-0.obj")).unwrap()
+    };
+    let sig = format!("{},{}", SIGMAS[0], SIGMAS[1]);
+    let reference = mesh("full.json", &[], "ref");
+    assert_eq!(
+        mesh("bare.json", &["--joint-sigma", &sig], "sig"),
+        reference
+    );
+}
