@@ -96,20 +96,41 @@ fn transform_round_trips_and_is_validated() {
             serde_json::from_str(&serde_json::to_string(&t32).unwrap()).unwrap();
         assert_eq!(back, t32);
     }
-    let ok = r#"{"rotation":[[1,0,0],[0,1,0],[0,0,1]],"translation":[1,2,3]}"#;
-    assert!(serde_json::from_str::<Transform<f64>>(ok).is_ok());
+    // The 4×4 homogeneous matrix, row-major: written by hand, not by the code under test.
+    let ok = "[[1,0,0,1],[0,1,0,2],[0,0,1,3],[0,0,0,1]]";
+    let t = serde_json::from_str::<Transform<f64>>(ok).unwrap();
+    assert_eq!(t.translation.0, [1.0, 2.0, 3.0]);
+    assert_eq!(t.rotation, Mat3::identity());
+    // A quarter turn about z: column 0 of R is the image of x, (0, 1, 0).
+    let quarter = "[[0,-1,0,0],[1,0,0,0],[0,0,1,0],[0,0,0,1]]";
+    let q = serde_json::from_str::<Transform<f64>>(quarter).unwrap();
+    assert_eq!(
+        q.rotation.0,
+        [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
+    );
+    assert_eq!(
+        serde_json::to_string(&Transform::<f64>::identity()).unwrap(),
+        "[[1.0,0.0,0.0,0.0],[0.0,1.0,0.0,0.0],[0.0,0.0,1.0,0.0],[0.0,0.0,0.0,1.0]]"
+    );
     let bad = [
-        r#"{"rotation":[[1,0,0],[0,1,0],[0,0,-1]],"translation":[1,2,3]}"#, // reflection
-        r#"{"rotation":[[1,0.01,0],[0,1,0],[0,0,1]],"translation":[1,2,3]}"#, // not orthonormal
-        r#"{"rotation":[[1,0,0],[0,1,0],[0,0,1]],"translation":[1,2]}"#,
-        r#"{"rotation":[[1,0,0],[0,1,0],[0,0,1]]}"#,
-        r#"{"rotation":[[1,0,0],[0,1,0],[0,0,1]],"translation":[1,2,3],"extra":1}"#,
-        r#"{"rotation":[[1,0,0],[0,1,0],[0,0,1]],"translation":[1e999,2,3]}"#,
+        "[[1,0,0,1],[0,1,0,2],[0,0,-1,3],[0,0,0,1]]", // reflection
+        "[[1,0.01,0,1],[0,1,0,2],[0,0,1,3],[0,0,0,1]]", // not orthonormal
+        "[[1,0,0,1],[0,1,0,2],[0,0,1,3],[0,0,0,2]]",  // not homogeneous
+        "[[1,0,0,1],[0,1,0,2],[0,0,1,3],[0.1,0,0,1]]", // a projective row
+        "[[1,0,0,1],[0,1,0,2],[0,0,1,3]]",            // 3 rows
+        "[[1,0,0],[0,1,0],[0,0,1],[0,0,0]]",          // rows of 3
+        "[[1,0,0,1],[0,1,0,2],[0,0,1,3],[0,0,0,1],[0,0,0,1]]",
+        "[[1,0,0,1e999],[0,1,0,2],[0,0,1,3],[0,0,0,1]]",
+        r#"{"rotation":[[1,0,0],[0,1,0],[0,0,1]],"translation":[1,2,3]}"#, // the old shape
     ];
     for b in bad {
         assert!(serde_json::from_str::<Transform<f64>>(b).is_err(), "{b}");
     }
-    let e = serde_json::from_str::<Transform<f64>>(bad[0])
+    let e = serde_json::from_str::<Transform<f64>>(bad[2])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("bottom row"), "{e}");
+    let e = serde_json::from_str::<Transform<f64>>(bad[1])
         .unwrap_err()
         .to_string();
     assert!(e.contains("not orthonormal"), "{e}");
@@ -182,6 +203,16 @@ fn uncertain_pose_round_trips_and_cov_is_validated() {
     let e = serde_json::from_str::<UncertainPose<f64>>(&serde_json::to_string(&asym).unwrap())
         .unwrap_err();
     assert!(e.to_string().contains("symmetric"), "{e}");
+    // Fields it does not know are ignored (an `eval` result's `thetas_clipped`); a
+    // missing one is an error.
+    let mut extra = serde_json::to_value(tip).unwrap();
+    extra["thetas_clipped"] = serde_json::json!([0.3, -0.2, 0.1]);
+    let back: UncertainPose<f64> = serde_json::from_value(extra).unwrap();
+    assert_eq!(back, tip);
+    let mut missing = serde_json::to_value(tip).unwrap();
+    let cov = missing.as_object_mut().unwrap().remove("cov").unwrap();
+    missing["covv"] = cov;
+    assert!(serde_json::from_value::<UncertainPose<f64>>(missing).is_err());
     let mut neg = tip;
     neg.cov = Mat6::identity().scale(-1.0);
     assert!(

@@ -201,7 +201,12 @@ pub struct Config {
     name: Option<String>,
     noise: Option<PathBuf>,
     allow_rejected_noise: bool,
+    joint_sigmas: Option<Vec<f64>>,
 }
+
+/// What names [`Config::joint_sigmas`] in errors and in the table's comment, where a noise
+/// file's name would be.
+const JOINT_SIGMAS: &str = "Config::joint_sigmas";
 
 impl Config {
     /// A builder for the URDF file at `urdf` (relative paths are relative to the current
@@ -216,6 +221,7 @@ impl Config {
             name: None,
             noise: None,
             allow_rejected_noise: false,
+            joint_sigmas: None,
         }
     }
 
@@ -262,6 +268,17 @@ impl Config {
     /// test is refused unless [`Config::allow_rejected_noise`].
     pub fn noise(&mut self, fit_result: impl AsRef<Path>) -> &mut Self {
         self.noise = Some(fit_result.as_ref().to_path_buf());
+        self
+    }
+
+    /// A noise model from a datasheet instead of a fit: one σ per moving joint of the
+    /// chain, base to tip (radians for revolute and continuous joints, metres for prismatic
+    /// ones; σ, not σ²), baked as `NAME_NOISE[i] = σᵢ²·SᵢSᵢᵀ` (Sᵢ the joint's screw axis in
+    /// the base frame, [`ppoe::chain::screw_noise`]) and `NAME_SIGMA2`
+    /// ([`noise::NoiseModel::from_sigmas`]). Setting it with [`Config::noise`] is an error
+    /// when the table is generated: the noise comes one way.
+    pub fn joint_sigmas(&mut self, sigmas: &[f64]) -> &mut Self {
+        self.joint_sigmas = Some(sigmas.to_vec());
         self
     }
 
@@ -314,6 +331,24 @@ impl Config {
         }
     }
 
+    /// The noise model of [`Config::noise`] (read and checked to be accepted) or of
+    /// [`Config::joint_sigmas`] (for `chain`), with the path that names it.
+    fn noise_for(&self, chain: &RobotChain) -> Result<Option<(noise::NoiseModel, &Path)>> {
+        let Some(sigmas) = &self.joint_sigmas else {
+            return self.noise_model();
+        };
+        let named = Path::new(JOINT_SIGMAS);
+        if self.noise.is_some() {
+            return Err(Error::new(
+                ErrorKind::Config,
+                "both Config::noise and Config::joint_sigmas are set: give the noise one way",
+            )
+            .in_file(named));
+        }
+        let model = noise::NoiseModel::from_sigmas(chain, sigmas).map_err(|e| e.in_file(named))?;
+        Ok(Some((model, named)))
+    }
+
     /// The noise model ([`Config::noise`]) read and checked to be accepted, with its path.
     fn noise_model(&self) -> Result<Option<(noise::NoiseModel, &Path)>> {
         let Some(path) = &self.noise else {
@@ -342,7 +377,7 @@ impl Config {
         let bytes = self.read()?;
         let chain = self.chain_from(&bytes)?;
         let model = self
-            .noise_model()?
+            .noise_for(&chain)?
             .filter(|(model, _)| lang == Lang::Rust || model.is_calibrated());
         let file_name = self.urdf.file_name().map(|s| s.to_string_lossy());
         Table {
@@ -407,17 +442,28 @@ impl Config {
     }
 }
 
-/// Writes `bytes` to a temporary file next to `path`, then renames it over `path`, so that
-/// a reader (a concurrent build, an interrupted one) never sees a partial table.
+/// Writes `bytes` to a temporary file next to `path` (tempfile's, in the same directory),
+/// then renames it over `path`, so that a reader (a concurrent build, an interrupted one)
+/// never sees a partial table; on an error the temporary file is removed and `path` is
+/// left as it was.
 fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(format!(".tmp{}", std::process::id()));
-    let tmp = PathBuf::from(tmp);
-    std::fs::write(&tmp, bytes)
-        .and_then(|()| std::fs::rename(&tmp, path))
-        .inspect_err(|_| {
-            let _ = std::fs::remove_file(&tmp);
-        })
+    use std::io::Write as _;
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".ppoe-build-tmp-");
+    // The mode a plain `fs::write` gives (0o666 less the umask), not tempfile's 0o600.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let mut tmp = builder.tempfile_in(dir)?;
+    tmp.write_all(bytes)?;
+    tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
 }
 
 impl Config {
@@ -435,5 +481,45 @@ impl Config {
     /// [`codegen_c::C_API_MAX_JOINTS`] joints.
     pub fn generate_c(&self) -> Result<String> {
         self.generate_lang(Lang::C)
+    }
+}
+
+#[cfg(test)]
+mod write_tests {
+    use super::write_atomically;
+
+    #[test]
+    fn replaces_by_rename_and_fails_without_a_trace() {
+        let dir = std::env::temp_dir().join(format!("ppoe-build-write-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("arm.rs");
+        std::fs::write(&path, b"old").unwrap();
+        // A second name for the old file: a rename leaves it alone.
+        std::fs::hard_link(&path, dir.join("old.rs")).unwrap();
+        write_atomically(&path, b"new").unwrap();
+        assert_eq!(std::fs::read(&path).unwrap(), b"new");
+        assert_eq!(std::fs::read(dir.join("old.rs")).unwrap(), b"old");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let plain = dir.join("plain");
+            std::fs::write(&plain, b"").unwrap();
+            let mode = |p: &std::path::Path| std::fs::metadata(p).unwrap().permissions().mode();
+            assert_eq!(mode(&path), mode(&plain));
+            std::fs::remove_file(&plain).unwrap();
+        }
+        // A directory in the way: an error, and nothing left behind.
+        let blocked = dir.join("sub");
+        std::fs::create_dir(&blocked).unwrap();
+        assert!(write_atomically(&blocked, b"x").is_err());
+        assert!(blocked.is_dir());
+        let mut names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        names.sort();
+        assert_eq!(names, ["arm.rs", "old.rs", "sub"]);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

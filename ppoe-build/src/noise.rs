@@ -9,6 +9,15 @@
 //! finite, symmetric and positive semi-definite, and the joints must be the chain's, by
 //! name and in order.
 //!
+//! **From a datasheet.** A joint may give `"sigma2"` (its joint-value variance σ², rad²
+//! or m²) and no `"cov"`: its covariance is then `σ²·SᵢSᵢᵀ`
+//! ([`ppoe::chain::screw_noise`]), Sᵢ the joint's screw axis in the base frame of the
+//! chain the model is used with (the calibrated one if the model has a calibration),
+//! filled in by [`NoiseModel::resolve`] once the chain is known. When a joint gives both,
+//! **`cov` wins** and `sigma2` is kept only for `NAME_SIGMA2` (that is what `ppoe fit`
+//! writes: the two agree there). [`NoiseModel::from_sigmas`] builds such a model from
+//! one σ per joint (`--joint-sigma`, [`crate::Config::joint_sigmas`]).
+//!
 //! The calibration fields are optional (hand-written and older files have none) and read
 //! strictly ([`Calibration`]): a fit that estimated a calibration wrote covariances of the
 //! *calibrated* chain, so [`NoiseModel::calibrated_chain`] folds it into the chain and a
@@ -60,6 +69,9 @@ pub struct NoiseModel {
     /// The lowercase hex SHA-256 of the file's text ([`NoiseModel::parse`]'s argument), so
     /// a table can name the exact file it was calibrated with.
     pub sha256: String,
+    /// The joints (indices) that gave `sigma2` and no `cov`: their `cov` is zero until
+    /// [`NoiseModel::resolve`] computes it from the chain's screw axes.
+    pub from_sigma2: Vec<usize>,
 }
 
 fn config(msg: String) -> Error {
@@ -97,19 +109,26 @@ impl NoiseModel {
             .as_array()
             .ok_or_else(|| config("noise model: no \"joints\" array".into()))?;
         let mut joints = Vec::with_capacity(list.len());
+        let mut from_sigma2 = Vec::new();
         for (i, j) in list.iter().enumerate() {
             let name = j["name"]
                 .as_str()
                 .ok_or_else(|| config(format!("noise model: joint {i} has no \"name\"")))?;
-            let what = format!("noise model: joint {i} ('{name}') cov");
-            let cov = matrix6(&j["cov"], &what)?;
-            ppoe::uncertainty::check_covariance(&ppoe::Mat6::from(cov))
-                .map_err(|e| config(format!("{what}: {e}")))?;
-            joints.push(NoiseJoint {
-                name: name.to_string(),
-                cov,
-                sigma2: j["sigma2"].as_f64().filter(|s| s.is_finite() && *s >= 0.0),
-            });
+            let joint = if j.get("cov").is_none() {
+                from_sigma2.push(i);
+                sigma2_joint(i, name, &j["sigma2"])?
+            } else {
+                let what = format!("noise model: joint {i} ('{name}') cov");
+                let cov = matrix6(&j["cov"], &what)?;
+                ppoe::uncertainty::check_covariance(&ppoe::Mat6::from(cov))
+                    .map_err(|e| config(format!("{what}: {e}")))?;
+                NoiseJoint {
+                    name: name.to_string(),
+                    cov,
+                    sigma2: j["sigma2"].as_f64().filter(|s| s.is_finite() && *s >= 0.0),
+                }
+            };
+            joints.push(joint);
         }
         let names: Vec<&str> = joints.iter().map(|j| j.name.as_str()).collect();
         let calibration = Calibration::parse(&v, list, &names)?;
@@ -119,7 +138,80 @@ impl NoiseModel {
             calibration,
             fits: fits(&v)?,
             sha256: crate::codegen::sha256_hex(text.as_bytes()),
+            from_sigma2,
         })
+    }
+
+    /// The joint model of a datasheet: joint i's covariance is `σᵢ²·SᵢSᵢᵀ` (Sᵢ its screw
+    /// axis in `chain`'s base frame), one σ per joint of `chain`, base to tip (radians for
+    /// revolute and continuous joints, metres for prismatic ones; σ, not σ²). `model` is
+    /// `"joint"`, so a table also gets `NAME_SIGMA2`; there is no calibration.
+    ///
+    /// # Errors
+    /// [`ErrorKind::Config`] for another number of σ than the chain has joints (naming
+    /// them), or a σ that is negative or not finite (naming its joint).
+    pub fn from_sigmas(chain: &RobotChain, sigmas: &[f64]) -> Result<Self> {
+        let names = chain.joint_names();
+        if sigmas.len() != names.len() {
+            return Err(config(format!(
+                "{} joint sigmas given, the chain from '{}' to '{}' has {} moving joints ({})",
+                sigmas.len(),
+                chain.base,
+                chain.tip,
+                names.len(),
+                names.join(", ")
+            )));
+        }
+        let mut joints = Vec::with_capacity(sigmas.len());
+        for (i, (&sigma, joint)) in sigmas.iter().zip(&chain.joints).enumerate() {
+            if !(sigma.is_finite() && sigma >= 0.0) {
+                return Err(config(format!(
+                    "joint sigma {i} ('{}') is {sigma}: expected a finite σ ≥ 0 (radians or metres)",
+                    joint.name
+                )));
+            }
+            let sigma2 = sigma * sigma;
+            joints.push(NoiseJoint {
+                name: joint.name.clone(),
+                cov: screw_cov(&joint.screw, sigma2),
+                sigma2: Some(sigma2),
+            });
+        }
+        Ok(Self {
+            model: "joint".into(),
+            joints,
+            ..Self::default()
+        })
+    }
+
+    /// Fills in the covariances of the joints that gave only `sigma2`
+    /// ([`NoiseModel::from_sigma2`]) from `chain`'s screw axes: `σ²·SᵢSᵢᵀ`. `chain` is the
+    /// one the covariances belong to ([`NoiseModel::calibrated_chain`]). Joints that gave a
+    /// `cov` are not touched; a second call changes nothing.
+    ///
+    /// # Errors
+    /// As [`NoiseModel::check_against`]; [`ErrorKind::NonFinite`] naming the joint if
+    /// `σ²·SᵢSᵢᵀ` overflows.
+    pub fn resolve(&mut self, chain: &RobotChain) -> Result<()> {
+        self.check_against(chain)?;
+        for &i in &self.from_sigma2 {
+            let j = &mut self.joints[i];
+            let cov = screw_cov(&chain.joints[i].screw, j.sigma2.unwrap_or(0.0));
+            // A huge σ² on a screw far from the origin overflows: an error, not a table of inf.
+            if cov.iter().flatten().any(|x| !x.is_finite()) {
+                return Err(Error::new(
+                    ErrorKind::NonFinite,
+                    format!(
+                        "noise model: joint {i} ('{}'): σ²·SSᵀ is not finite (sigma2 {})",
+                        j.name,
+                        j.sigma2.unwrap_or(0.0)
+                    ),
+                ));
+            }
+            j.cov = cov;
+        }
+        self.from_sigma2.clear();
+        Ok(())
     }
 
     /// Reads and parses a fit result file.
@@ -193,6 +285,35 @@ impl NoiseModel {
             .map(|j| ppoe::Mat6::from(j.cov))
             .collect()
     }
+}
+
+/// `σ²·S·Sᵀ`: the core's [`ppoe::chain::screw_noise`], so tables and the runtime agree.
+fn screw_cov(screw: &[f64; 6], sigma2: f64) -> [[f64; 6]; 6] {
+    ppoe::chain::screw_noise(&ppoe::Vector(*screw), sigma2).0
+}
+
+/// A joint that gives `sigma2` and no `cov` (its `cov` is filled in by
+/// [`NoiseModel::resolve`]).
+fn sigma2_joint(i: usize, name: &str, sigma2: &serde_json::Value) -> Result<NoiseJoint> {
+    let at = format!("noise model: joint {i} ('{name}')");
+    if sigma2.is_null() {
+        return Err(config(format!(
+            "{at} has neither \"cov\" (6×6) nor \"sigma2\" (its joint-value variance)"
+        )));
+    }
+    let s = sigma2
+        .as_f64()
+        .filter(|s| s.is_finite() && *s >= 0.0)
+        .ok_or_else(|| {
+            config(format!(
+                "{at} sigma2: expected a finite variance ≥ 0 (rad² or m²), got {sigma2}"
+            ))
+        })?;
+    Ok(NoiseJoint {
+        name: name.to_string(),
+        cov: [[0.0; 6]; 6],
+        sigma2: Some(s),
+    })
 }
 
 /// `goodness_of_fit.fits`: absent (a hand-written file) is `None`; present, it must be a

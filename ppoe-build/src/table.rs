@@ -112,7 +112,10 @@ impl Table<'_> {
             n.model
                 .check_against(self.chain)
                 .map_err(|e| e.in_file(n.path))?;
-            src += &noise::generate(n.model, self.name, self.scalar, &file);
+            // Joints given by sigma2 alone take the screw axes of the chain the table holds.
+            let mut model = n.model.clone();
+            model.resolve(chain).map_err(|e| e.in_file(n.path))?;
+            src += &noise::generate(&model, self.name, self.scalar, &file);
         }
         Ok(src)
     }

@@ -35,6 +35,19 @@ pub struct NoiseArgs {
     /// (goodness_of_fit.fits false) anyway; without it, such a model is an error.
     #[arg(long, requires = "noise")]
     pub allow_rejected_noise: bool,
+    /// Take every case's covariances from a datasheet instead: one σ per moving joint of
+    /// the chain, base to tip, comma-separated (radians for revolute and continuous
+    /// joints, metres for prismatic ones; σ, not σ²); joint i's covariance is σᵢ²·SᵢSᵢᵀ,
+    /// Sᵢ its screw axis in the base frame. Not with --noise (a noise file does the same
+    /// with "sigma2" and no "cov" per joint).
+    #[arg(
+        long,
+        value_name = "S1,S2,...",
+        value_delimiter = ',',
+        allow_negative_numbers = true,
+        conflicts_with = "noise"
+    )]
+    pub joint_sigma: Option<Vec<f64>>,
 }
 
 /// The scalar type the PPOE is computed in.
@@ -131,5 +144,38 @@ fn open_unit(s: &str) -> Result<f64, String> {
         Ok(p) if p > 0.0 && p < 1.0 => Ok(p),
         Ok(_) => Err("expected a probability strictly between 0 and 1".to_string()),
         Err(e) => Err(format!("not a number ({e})")),
+    }
+}
+
+/// How many significant digits numbers printed for people get (`--precision`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Precision {
+    /// This many significant digits, 1 to 17.
+    Digits(u8),
+    /// 17 significant digits: every f64 reads back exactly.
+    Full,
+}
+
+impl Precision {
+    /// `x` in scientific notation with the precision's significant digits.
+    pub fn format(self, x: f64) -> String {
+        let digits = match self {
+            Precision::Digits(d) => usize::from(d),
+            Precision::Full => 17,
+        };
+        // Sign, one digit, point, the other digits, and an exponent of up to `e-308`.
+        format!("{x:>width$.prec$e}", width = digits + 7, prec = digits - 1)
+    }
+}
+
+/// `--precision`: `full` or a number of significant digits from 1 to 17 (a usage error
+/// otherwise, exit status 2).
+pub fn precision(s: &str) -> Result<Precision, String> {
+    if s == "full" {
+        return Ok(Precision::Full);
+    }
+    match s.parse::<u8>() {
+        Ok(d) if (1..=17).contains(&d) => Ok(Precision::Digits(d)),
+        _ => Err("expected `full` or a number of significant digits from 1 to 17".to_string()),
     }
 }

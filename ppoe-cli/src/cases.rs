@@ -90,7 +90,10 @@ pub fn load(path: Option<&Path>, covs: Option<Vec<[[f64; 6]; 6]>>) -> anyhow::Re
     let mut cases = Vec::with_capacity(given.cases.len());
     for (i, c) in given.cases.into_iter().enumerate() {
         if c.covs {
-            bail!("case {i} gives \"covs\" and --noise is set: give the covariances one way");
+            bail!(
+                "case {i} gives \"covs\" and --noise or --joint-sigma is set: give the \
+                 covariances one way"
+            );
         }
         cases.push(Case {
             thetas: c.thetas,

@@ -2,7 +2,7 @@
 //! frames along the chain, the equiprobable surface of the tool position and the
 //! second-order mean, as a [`picture::Frame`].
 
-use crate::args::{SurfaceArg, SurfaceArgs};
+use crate::args::{Precision, SurfaceArg, SurfaceArgs};
 use crate::output::println;
 use crate::picture::{self, Frame};
 use crate::seed;
@@ -171,10 +171,10 @@ pub fn robot_visuals(
     Ok(visuals)
 }
 
-fn print_matrix<const C: usize>(title: &str, m: &[[f64; C]]) {
+fn print_matrix<const C: usize>(title: &str, m: &[[f64; C]], precision: Precision) {
     println!("{title}");
     for row in m {
-        let cells: Vec<String> = row.iter().map(|x| format!("{x:>24.16e}")).collect();
+        let cells: Vec<String> = row.iter().map(|x| precision.format(*x)).collect();
         println!("  [{}]", cells.join(","));
     }
 }
@@ -246,7 +246,7 @@ pub fn write_gif(
 }
 
 /// The demo's report of the seed robot and its initial state on stdout.
-fn print_initial(initial: &State) {
+fn print_initial(initial: &State, precision: Precision) {
     println!(
         "seed robot: '{}' → '{}', joints {} (table generated at build time from seed.urdf)",
         seed::SEED.base,
@@ -262,14 +262,17 @@ fn print_initial(initial: &State) {
     print_matrix(
         "initial pose (tcp in linkmount):",
         &initial.pose.to_matrix4(),
+        precision,
     );
     print_matrix(
         "initial covariance, right perturbation T = T̄·Exp(η) (rotation first):",
         &initial.cov_right.0,
+        precision,
     );
     print_matrix(
         "initial covariance, pytransform3d-compatible (Ad(M), for comparison):",
         &initial.cov_compat.0,
+        precision,
     );
     let m2 = initial.frame.mean2;
     println!(
@@ -283,21 +286,18 @@ fn print_initial(initial: &State) {
     );
 }
 
-/// `ppoe demo`: the seed example from the build-time table; `noise` is a noise model
-/// (and whether a rejected fit is allowed), whose calibration, if any, is folded into the
-/// table at run time.
+/// `ppoe demo`: the seed example from the build-time table with the covariances (and
+/// the calibration, folded in at run time) of `seed` ([`crate::noise::seed`]); the pose
+/// and covariances printed with `precision`.
 pub fn demo(
     out: &Path,
     surface: &SurfaceArgs,
     n_frames: usize,
-    noise: Option<(&Path, bool)>,
+    seed: crate::noise::Seed,
+    precision: Precision,
 ) -> anyhow::Result<()> {
     let start = Instant::now();
     let (k, label) = level(surface)?;
-    let seed = match noise {
-        Some((p, allow)) => crate::noise::seed(p, allow)?,
-        None => crate::noise::Seed::example(),
-    };
     let (chain, covs) = (seed.chain.as_ref(), seed.covs);
     let grid = surface.grid as usize;
     let mut visuals = seed::visuals()?;
@@ -315,7 +315,7 @@ pub fn demo(
         &label,
         &visuals,
     )?;
-    print_initial(&initial);
+    print_initial(&initial, precision);
     println!("surface: {label}");
 
     ensure_dir(out)?;

@@ -55,11 +55,8 @@ fn prepare(
         load::noise_input(noise.noise.as_deref()),
     ])?;
     let mut robot = load::robot(chain_args)?;
-    let (covs, folds) = match &noise.noise {
-        Some(p) => {
-            let applied = noise::apply(p, noise.allow_rejected_noise, &mut robot.chain)?;
-            (Some(applied.covs), applied.folds)
-        }
+    let (covs, folds) = match noise::from_args(noise, &mut robot.chain)? {
+        Some(applied) => (Some(applied.covs), applied.folds),
         None => (None, Vec::new()),
     };
     let cases = cases::load(input, covs)?;

@@ -32,7 +32,9 @@ mod names;
 mod noise;
 mod output;
 mod picture;
+mod pretty;
 mod report;
+mod ros;
 mod seed;
 mod visuals;
 

@@ -37,21 +37,11 @@ fn folded(name: &str) -> Vec<char> {
         .collect()
 }
 
-/// Levenshtein distance, one row at a time.
-fn distance(a: &[char], b: &[char]) -> usize {
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.iter().enumerate() {
-        let mut diag = row[0];
-        row[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let next = (diag + usize::from(ca != cb))
-                .min(row[j] + 1)
-                .min(row[j + 1] + 1);
-            diag = row[j + 1];
-            row[j + 1] = next;
-        }
-    }
-    row[b.len()]
+/// Levenshtein distance of the folded forms (strsim's, on characters).
+// strsim's generic distance takes a sized collection by reference, not a slice.
+#[allow(clippy::ptr_arg)]
+fn distance(a: &Vec<char>, b: &Vec<char>) -> usize {
+    strsim::generic_levenshtein(a, b)
 }
 
 /// The candidates nearest to `name`, nearest first: those equal after folding (Unicode

@@ -9,7 +9,12 @@
 //! covariances belong to the calibrated chain, so every command uses that chain
 //! ([`NoiseModel::calibrated_chain`]: offsets and corrections folded into the screws and
 //! the home pose) and places the links with its folds (see [`Applied`]).
+//!
+//! `--joint-sigma S1,S2,...` is the datasheet's noise model instead
+//! ([`NoiseModel::from_sigmas`]: σᵢ²·SᵢSᵢᵀ per joint), as is a noise file whose joints
+//! give `sigma2` and no `cov` ([`NoiseModel::resolve`]); the two flags exclude each other.
 
+use crate::args::NoiseArgs;
 use crate::{input, load};
 use anyhow::{anyhow, bail};
 use ppoe_build::noise::NoiseModel;
@@ -77,11 +82,35 @@ pub fn apply(path: &Path, allow_rejected: bool, robot: &mut RobotChain) -> anyho
     } else {
         Vec::new()
     };
+    let mut model = model;
+    // Joints given by sigma2 alone take the screws of the chain the covariances belong to.
+    model.resolve(&calibrated).map_err(in_file)?;
     *robot = calibrated;
     Ok(Applied {
         covs: model.joints.iter().map(|j| j.cov).collect(),
         folds,
     })
+}
+
+/// The covariances of `--noise` or `--joint-sigma` for `robot` (replaced by the calibrated
+/// chain for a calibrated noise model); `None` if neither is given.
+///
+/// # Errors
+/// As [`apply`]; for `--joint-sigma`, another count than the chain's joints (naming them)
+/// or a σ that is negative or not finite.
+pub fn from_args(a: &NoiseArgs, robot: &mut RobotChain) -> anyhow::Result<Option<Applied>> {
+    if let Some(p) = &a.noise {
+        return apply(p, a.allow_rejected_noise, robot).map(Some);
+    }
+    let Some(sigmas) = &a.joint_sigma else {
+        return Ok(None);
+    };
+    let model =
+        NoiseModel::from_sigmas(robot, sigmas).map_err(|e| anyhow!("--joint-sigma: {e}"))?;
+    Ok(Some(Applied {
+        covs: model.joints.iter().map(|j| j.cov).collect(),
+        folds: Vec::new(),
+    }))
 }
 
 /// The seed robot with a noise model (`demo --noise`): the covariances, the chain (the
@@ -128,18 +157,34 @@ pub fn seed(path: &Path, allow_rejected: bool) -> anyhow::Result<Seed> {
             names.join(", ")
         );
     }
-    let covs = model.covs();
-    let mut out = Seed {
-        covs: std::array::from_fn(|i| covs[i]),
-        ..Seed::example()
-    };
+    let in_file = |e: ppoe_build::Error| anyhow!("{}: {e}", named.display());
+    let mut model = model;
+    let mut out = Seed::example();
+    let nominal = crate::seed::robot_chain();
     if model.is_calibrated() {
-        let in_file = |e: ppoe_build::Error| anyhow!("{}: {e}", named.display());
-        let nominal = crate::seed::robot_chain();
         let folded = model.calibration.apply(&nominal).map_err(in_file)?;
         out.folds = model.calibration.link_folds(&nominal).map_err(in_file)?;
         out.chain = folded.to_core_chain().map_err(in_file)?;
         out.home_frames = std::array::from_fn(|i| folded.joints[i].home_frame);
+        model.resolve(&folded).map_err(in_file)?;
+    } else {
+        model.resolve(&nominal).map_err(in_file)?;
     }
+    let covs = model.covs();
+    out.covs = std::array::from_fn(|i| covs[i]);
     Ok(out)
+}
+
+/// The seed robot with the datasheet noise of `--joint-sigma` (six σ, base to tip).
+///
+/// # Errors
+/// Not six σ (naming the seed's joints), or a σ that is negative or not finite.
+pub fn seed_sigmas(sigmas: &[f64]) -> anyhow::Result<Seed> {
+    let model = NoiseModel::from_sigmas(&crate::seed::robot_chain(), sigmas)
+        .map_err(|e| anyhow!("--joint-sigma: {e}"))?;
+    let covs = model.covs();
+    Ok(Seed {
+        covs: std::array::from_fn(|i| covs[i]),
+        ..Seed::example()
+    })
 }

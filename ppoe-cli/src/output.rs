@@ -6,7 +6,8 @@
 //! Atomic: an interrupted run (Ctrl-C, a full disk, an error half-way through a GIF) never
 //! leaves a truncated file under the final name, and the previous good file stays until
 //! the new one is complete. A killed run may leave its hidden temporary file
-//! (`.ppoe-tmp-<pid>-<n>-<name>`) behind; nothing else reads it.
+//! (`.ppoe-tmp-<random>-<name>`, made by the `tempfile` crate) behind; nothing else reads
+//! it.
 //!
 //! What the path is decides how ([`Target`]): a new path or a regular file is replaced
 //! atomically; a symbolic link to a regular file (or to nothing yet) keeps the link, and
@@ -19,10 +20,10 @@
 //! `table` and `eval`, whose product *is* standard output, stop early and exit 0. Any other
 //! write error (a full disk behind `> file`) is an error naming standard output.
 
-use anyhow::{bail, Context};
+use anyhow::bail;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 
 /// Set once a write to standard output found the pipe closed.
@@ -30,8 +31,6 @@ static STDOUT_CLOSED: AtomicBool = AtomicBool::new(false);
 /// The first standard-output error other than a closed pipe, reported by `main` at exit
 /// (the `println!` of this module cannot return it).
 static STDOUT_ERROR: Mutex<Option<String>> = Mutex::new(None);
-/// Makes temporary names unique within the process.
-static TEMP_COUNTER: AtomicUsize = AtomicUsize::new(0);
 
 /// `true` once the reader of standard output went away.
 pub fn stdout_closed() -> bool {
@@ -95,16 +94,29 @@ pub fn io_sentence(e: &io::Error) -> String {
     }
 }
 
-/// The hidden temporary path next to `path`, keeping its extension (the PNG writer picks
-/// the format from it).
-fn temp_path(path: &Path) -> anyhow::Result<PathBuf> {
+/// A new hidden temporary file next to `path` (in its directory, so the rename is atomic),
+/// named `.ppoe-tmp-<random>-<name>` to keep `path`'s extension (the PNG writer picks the
+/// format from it); removed when dropped unless persisted. Created with the mode a plain
+/// `File::create` gives (0o666 less the umask), not tempfile's private 0o600, so outputs
+/// keep the permissions they had.
+fn temp_file(path: &Path) -> io::Result<tempfile::NamedTempFile> {
     let name = path
         .file_name()
-        .with_context(|| format!("{}: not a file name", path.display()))?;
-    let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
-    let mut temp = std::ffi::OsString::from(format!(".ppoe-tmp-{}-{n}-", std::process::id()));
-    temp.push(name);
-    Ok(path.with_file_name(temp))
+        .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "not a file name"))?;
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut suffix = std::ffi::OsString::from("-");
+    suffix.push(name);
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".ppoe-tmp-").suffix(&suffix);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    builder.tempfile_in(dir)
 }
 
 /// How a file at a path is written.
@@ -188,7 +200,8 @@ fn open_through(path: &Path) -> io::Result<std::fs::File> {
 }
 
 /// Calls `write(temp)` to fill a temporary file next to `real`, then renames it to
-/// `real`; errors name `shown`, the path as given.
+/// `real` (tempfile's `persist`); errors name `shown`, the path as given. On any error the
+/// temporary file is removed (dropped) and `real` is left as it was.
 fn replace(
     real: &Path,
     shown: &Path,
@@ -196,18 +209,15 @@ fn replace(
 ) -> anyhow::Result<()> {
     let sentence =
         |e: io::Error| anyhow::anyhow!("cannot write {}: {}", shown.display(), io_sentence(&e));
-    let temp = temp_path(real)?;
-    let result = write(&temp).and_then(|()| {
-        // Data on disk before the rename makes the new name visible.
-        std::fs::File::open(&temp)
-            .and_then(|f| f.sync_all())
-            .map_err(sentence)?;
-        std::fs::rename(&temp, real).map_err(sentence)
-    });
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temp);
-    }
-    result
+    let temp = temp_file(real).map_err(sentence)?;
+    write(temp.path())?;
+    // Data on disk before the rename makes the new name visible (the writer may have
+    // written through its own handle of the path).
+    std::fs::File::open(temp.path())
+        .and_then(|f| f.sync_all())
+        .map_err(sentence)?;
+    temp.persist(real).map_err(|e| sentence(e.error))?;
+    Ok(())
 }
 
 /// Writes `path` with `write(file)`, for writers that take a path (the picture encoders,
@@ -227,15 +237,13 @@ pub fn write_atomic_path(
     };
     let sentence =
         |e: io::Error| anyhow::anyhow!("cannot write {}: {}", real.display(), io_sentence(&e));
-    let temp = temp_path(path)?;
-    let result = write(&temp).and_then(|()| {
-        let mut from = std::fs::File::open(&temp).map_err(sentence)?;
-        let mut to = open_through(real).map_err(sentence)?;
-        io::copy(&mut from, &mut to).map_err(sentence)?;
-        to.flush().map_err(sentence)
-    });
-    let _ = std::fs::remove_file(&temp);
-    result
+    // Dropped (removed) at the end, whatever happens.
+    let temp = temp_file(path).map_err(sentence)?;
+    write(temp.path())?;
+    let mut from = std::fs::File::open(temp.path()).map_err(sentence)?;
+    let mut to = open_through(real).map_err(sentence)?;
+    io::copy(&mut from, &mut to).map_err(sentence)?;
+    to.flush().map_err(sentence)
 }
 
 /// Writes `path` atomically through a buffered writer given to `write` (or through it, see
@@ -334,15 +342,14 @@ pub fn check_targets(dir: &Path, names: &[String]) -> anyhow::Result<()> {
 
 /// Creates and removes a temporary file in `dir`.
 fn probe(dir: &Path) -> anyhow::Result<()> {
-    let probe = temp_path(&dir.join("probe"))?;
-    std::fs::File::create(&probe).map_err(|e| {
+    // Removed when dropped.
+    temp_file(&dir.join("probe")).map_err(|e| {
         anyhow::anyhow!(
             "cannot write into the output directory {}: {}",
             dir.display(),
             io_sentence(&e)
         )
     })?;
-    let _ = std::fs::remove_file(&probe);
     Ok(())
 }
 
@@ -373,10 +380,25 @@ mod tests {
     }
 
     #[test]
-    fn temporary_keeps_the_extension() {
-        let t = temp_path(Path::new("out/ppoe-render-0.png")).unwrap();
-        assert_eq!(t.extension().unwrap(), "png");
-        assert_eq!(t.parent().unwrap(), Path::new("out"));
+    fn temporary_keeps_the_extension_and_the_directory() {
+        let d = dir("extension");
+        let t = temp_file(&d.join("ppoe-render-0.png")).unwrap();
+        assert_eq!(t.path().extension().unwrap(), "png");
+        assert_eq!(t.path().parent().unwrap(), d);
+        let name = t.path().file_name().unwrap().to_string_lossy().into_owned();
+        assert!(
+            name.starts_with(".ppoe-tmp-") && name.ends_with("-ppoe-render-0.png"),
+            "{name}"
+        );
+        #[cfg(unix)]
+        {
+            // Not tempfile's 0o600: what File::create gives under this umask.
+            use std::os::unix::fs::PermissionsExt;
+            let plain = d.join("plain");
+            std::fs::File::create(&plain).unwrap();
+            let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode();
+            assert_eq!(mode(t.path()), mode(&plain));
+        }
     }
 
     #[test]

@@ -6,13 +6,24 @@
 //! |---|---|---|
 //! | [`Vector<T, N>`] | a sequence of N numbers (a tuple: no length prefix in binary formats) | length |
 //! | [`Matrix<T, R, C>`] | R rows, each a sequence of C numbers (row-major, like `self.0`) | lengths |
-//! | [`Transform<T>`] | `{ "rotation": 3×3 rows, "translation": [x, y, z] }` | [`Transform::check`] |
+//! | [`Transform<T>`] | its 4×4 homogeneous matrix, 4 rows of 4 numbers (row-major: `[[R₀₀, R₀₁, R₀₂, x], …, [0, 0, 0, 1]]`) | bottom row exactly `[0, 0, 0, 1]`, [`Transform::check`] |
 //! | [`JointKind`] | `"revolute"`, `"continuous"`, `"prismatic"` (URDF's spelling) | |
 //! | [`Joint<T>`] | `{ "name", "kind", "screw": [ωx, ωy, ωz, vx, vy, vz], "lower", "upper" }`; a limit is `null` when unbounded (−∞ / +∞: JSON has no infinity) | [`ChainView::check`] of the joint alone |
 //! | [`Chain<T, N>`] | `{ "base", "tip", "joints": [N joints], "home": Transform }` | [`ChainView::check`] |
 //! | [`ChainView<T>`] | `{ "joints": [joints], "home": Transform }` (serialise only) | |
-//! | [`UncertainPose<T>`] | `{ "pose": Transform, "cov": 6×6 rows }` | pose, and [`check_covariance`] |
+//! | [`UncertainPose<T>`] | `{ "pose": Transform, "cov": 6×6 rows }` (other fields are ignored) | pose, and [`check_covariance`] |
 //! | [`Convention`], [`Error`] | the variant's name, e.g. `"Right"`, `"NotARotation"` | |
+//!
+//! **One shape for poses across ppoe.** A pose is a 4×4 row-major matrix and a
+//! covariance 6×6 rows, rotation first (`(ω, v)`), everywhere: this module, every JSON
+//! file the `ppoe` command reads or writes, and `ppoe-build`'s noise models. A result of
+//! `ppoe eval` (`{"thetas_clipped", "pose", "cov"}`) therefore reads as an
+//! [`UncertainPose`] as it is: [`UncertainPose`] ignores fields it does not know (its
+//! two fields are required, so a misspelt one is still an error). Its `cov` is the
+//! perturbation `eval` was asked for (`--convention`; the default is the right one,
+//! [`Convention::Right`], which is what [`UncertainPose`] means). ROS's shape
+//! (translation first, parent frame) is [`crate::interop::ros`]'s, and `ppoe eval
+//! --format ros`'s.
 //!
 //! Joint names are `&'static str`, so [`Joint`] and [`Chain`] implement
 //! `Deserialize<'static>` only: they borrow their names from input that lives for the
@@ -27,11 +38,11 @@
 //! use ppoe::Transform;
 //! let t = Transform::<f64>::from_rpy(&[0.1, 0.2, 0.3], [1.0, 2.0, 3.0])?;
 //! let json = serde_json::to_string(&t).unwrap();
-//! assert!(json.starts_with("{\"rotation\":[["));
+//! assert!(json.starts_with("[[") && json.ends_with(",[0.0,0.0,0.0,1.0]]"));
 //! let back: Transform<f64> = serde_json::from_str(&json).unwrap();
 //! assert_eq!(back, t);
 //! // Not a rotation: an error, not a wrong transform.
-//! let bad = r#"{"rotation":[[2,0,0],[0,1,0],[0,0,1]],"translation":[0,0,0]}"#;
+//! let bad = "[[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]";
 //! assert!(serde_json::from_str::<Transform<f64>>(bad).is_err());
 //! # Ok::<(), ppoe::Error>(())
 //! ```
@@ -44,7 +55,7 @@ use serde::ser::{self, Serialize, SerializeTuple, Serializer};
 
 use crate::chain::{Chain, ChainView, Convention, Joint, JointKind, UncertainPose};
 use crate::error::Error;
-use crate::linalg::{Mat3, Mat6, Matrix, Vec3, Vec6, Vector};
+use crate::linalg::{Mat6, Matrix, Vec6, Vector};
 use crate::scalar::Real;
 use crate::se3::Transform;
 use crate::uncertainty::check_covariance;
@@ -130,32 +141,32 @@ impl<'de, T: Deserialize<'de>, const R: usize, const C: usize> Deserialize<'de>
     }
 }
 
-/// The serialised form of [`Transform`].
-#[derive(serde::Serialize, serde::Deserialize)]
-#[serde(rename = "Transform", deny_unknown_fields)]
-#[serde(bound(serialize = "T: Serialize", deserialize = "T: Deserialize<'de>"))]
-struct TransformRepr<T> {
-    rotation: Mat3<T>,
-    translation: Vec3<T>,
+/// The bottom row every homogeneous transform has.
+fn bottom_row<T: Real>() -> [T; 4] {
+    [T::ZERO, T::ZERO, T::ZERO, T::ONE]
 }
 
+/// A transform is written as its 4×4 homogeneous matrix, row-major (four rows of four
+/// numbers), the shape every file of the `ppoe` command uses (`eval`'s `pose` and `home`,
+/// `fit`'s samples), so a pose written by one reads back in the other.
 impl<T: Real + Serialize> Serialize for Transform<T> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        TransformRepr {
-            rotation: self.rotation,
-            translation: self.translation,
-        }
-        .serialize(s)
+        Matrix(self.to_matrix4()).serialize(s)
     }
 }
 
+/// Reads four rows of four; the bottom row must be exactly `[0, 0, 0, 1]` (anything else
+/// is not a rigid transform, and silently dropping it would hide a wrong input) and the
+/// rotation block must pass [`Transform::check`].
 impl<'de, T: Real + Deserialize<'de>> Deserialize<'de> for Transform<T> {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        let r = TransformRepr::<T>::deserialize(d)?;
-        let t = Transform {
-            rotation: r.rotation,
-            translation: r.translation,
-        };
+        let m = Matrix::<T, 4, 4>::deserialize(d)?;
+        if m.0[3] != bottom_row::<T>() {
+            return Err(de::Error::custom(
+                "the bottom row of a 4×4 transform is not [0, 0, 0, 1]",
+            ));
+        }
+        let t = Transform::from_matrix4(&m.0);
         t.check().map_err(de::Error::custom)?;
         Ok(t)
     }
@@ -368,7 +379,9 @@ impl<T: Real + Serialize> Serialize for JointSlice<'_, T> {
 
 /// The serialised form of [`UncertainPose`].
 #[derive(serde::Serialize, serde::Deserialize)]
-#[serde(rename = "UncertainPose", deny_unknown_fields)]
+// No deny_unknown_fields: both fields are required, so a misspelling is still an error,
+// and a record carrying more (an `eval` result's `thetas_clipped`) reads as it is.
+#[serde(rename = "UncertainPose")]
 #[serde(bound(
     serialize = "T: Real + Serialize",
     deserialize = "T: Real + Deserialize<'de>"

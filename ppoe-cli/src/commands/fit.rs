@@ -62,7 +62,7 @@ pub fn run(a: &FitArgs) -> anyhow::Result<()> {
     let estimate = a.estimate.unwrap_or(ppoe_fit::Estimate::NONE);
     let result = fit::run(&robot.chain, text, model, estimate)
         .map_err(|e| anyhow::anyhow!("{}: {e:#}", input.name))?;
-    let mut text = serde_json::to_string_pretty(&result)?;
+    let mut text = crate::pretty::to_string(&result)?;
     text.push('\n');
     match &a.out {
         Some(p) => output::write_atomic(p, |w| w.write_all(text.as_bytes())),

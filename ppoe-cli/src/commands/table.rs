@@ -3,6 +3,7 @@
 use crate::args::ChainArgs;
 use crate::{load, noise, output};
 use clap::{Args, ValueEnum};
+use ppoe_build::noise::NoiseModel;
 use std::path::PathBuf;
 
 /// The arguments of `ppoe table`.
@@ -27,6 +28,17 @@ pub struct TableArgs {
     /// (goodness_of_fit.fits false) anyway; without it, such a model is an error.
     #[arg(long, requires = "noise")]
     allow_rejected_noise: bool,
+    /// Emit NAME_NOISE and NAME_SIGMA2 from a datasheet instead: one σ per moving joint,
+    /// base to tip, comma-separated (radians or metres; σ, not σ²): NAME_NOISE[i] =
+    /// σᵢ²·SᵢSᵢᵀ. Not with --noise; Rust tables only.
+    #[arg(
+        long,
+        value_name = "S1,S2,...",
+        value_delimiter = ',',
+        allow_negative_numbers = true,
+        conflicts_with = "noise"
+    )]
+    joint_sigma: Option<Vec<f64>>,
     /// The language: rust (`pub const` items) or c (a C99 header of `static const` data
     /// for ppoe-ffi's C API, `ppoe.h`).
     #[arg(long, value_enum, default_value_t = TableLang::Rust)]
@@ -67,9 +79,14 @@ pub fn run(a: &TableArgs) -> anyhow::Result<()> {
         TableLang::Rust => ppoe_build::Lang::Rust,
         TableLang::C => ppoe_build::Lang::C,
     };
-    let model = match &a.noise {
-        Some(p) => Some(noise::read(p, a.allow_rejected_noise)?),
-        None => None,
+    let model = match (&a.noise, &a.joint_sigma) {
+        (Some(p), _) => Some(noise::read(p, a.allow_rejected_noise)?),
+        (None, Some(sigmas)) => Some((
+            NoiseModel::from_sigmas(&robot.chain, sigmas)
+                .map_err(|e| anyhow::anyhow!("--joint-sigma: {e}"))?,
+            PathBuf::from("--joint-sigma"),
+        )),
+        (None, None) => None,
     };
     let src = ppoe_build::Table {
         chain: &robot.chain,
