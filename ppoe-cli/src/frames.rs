@@ -62,10 +62,11 @@ fn prepare(
         }
         None => (None, Vec::new()),
     };
-    let cases = cases::load(input, covs)?;
+    let mut cases = cases::load(input, covs)?;
     if cases.cases.is_empty() {
         bail!("the input has no cases");
     }
+    cases::expand_mimic(&robot.chain, &mut cases)?;
     cases::check_counts(&robot.chain, &cases)?;
     let n = cases.cases.len();
     match sink {

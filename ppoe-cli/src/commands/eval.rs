@@ -39,7 +39,8 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
         Some(p) => Some(noise::apply(p, a.noise.allow_rejected_noise, &mut robot.chain)?.covs),
         None => None,
     };
-    let input = cases::load(a.input.as_deref(), covs)?;
+    let mut input = cases::load(a.input.as_deref(), covs)?;
+    cases::expand_mimic(&robot.chain, &mut input)?;
     let out = eval::eval(&robot.chain, &input, a.scalar, a.convention.core())?;
     let mut text = if a.pretty {
         serde_json::to_string_pretty(&out)?
