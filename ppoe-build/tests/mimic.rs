@@ -207,3 +207,43 @@ fn errors() {
         .chain("a", "d", None::<&[&str]>)
         .is_ok());
 }
+
+#[test]
+fn a_long_chain_of_mimics_is_resolved() {
+    // j0 ← j1 ← … ← j4999, each mimicking the one before with offset 0.001: joint k is
+    // j0 + 0.001·k (each joint's resolution is remembered, so this is O(n) work; speed
+    // itself is for benchmarks, not tests).
+    let n = 5000;
+    let mut s = String::from("<robot name=\"long\"><link name=\"l0\"/>");
+    for k in 0..n {
+        let mimic = if k == 0 {
+            String::new()
+        } else {
+            format!("<mimic joint=\"j{}\" offset=\"0.001\"/>", k - 1)
+        };
+        s.push_str(&format!(
+            "<link name=\"l{}\"/><joint name=\"j{k}\" type=\"revolute\"><parent link=\"l{k}\"/>\
+             <child link=\"l{}\"/><axis xyz=\"0 0 1\"/>{mimic}</joint>",
+            k + 1,
+            k + 1
+        ));
+    }
+    s.push_str("</robot>");
+    let c = Urdf::parse(&s)
+        .unwrap()
+        .chain("l0", &format!("l{n}"), None::<&[&str]>)
+        .unwrap();
+    let sources = c.coupling.unwrap().sources;
+    assert_eq!(sources.len(), n);
+    for (k, source) in sources.iter().enumerate().skip(1) {
+        let JointSource::Mimic(m) = source else {
+            panic!("joint {k} is not a mimic joint");
+        };
+        assert_eq!((m.master, m.multiplier), (0, 1.0));
+        assert!(
+            (m.offset - 0.001 * k as f64).abs() < 1e-12,
+            "{k}: {}",
+            m.offset
+        );
+    }
+}
