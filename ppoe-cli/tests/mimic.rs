@@ -288,3 +288,39 @@ fn links_and_tables_name_the_master() {
     assert_eq!(out.status.code(), Some(1));
     assert!(stderr(&out).contains("mimic joints (left_finger, curl)"));
 }
+
+#[test]
+fn fit_samples_give_the_independent_values() {
+    let u = urdf("gripper.urdf");
+    let eye = [
+        [1.0, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ];
+    let text = json!({"samples": [{"thetas": [0.1, 0.2, 0.01, 0.3], "pose": eye}]}).to_string();
+    let out = run_bytes(
+        &[
+            "fit",
+            "--urdf",
+            u.to_str().unwrap(),
+            "--base",
+            "base",
+            "--tip",
+            "left_tip",
+            "--model",
+            "joint",
+        ],
+        text.as_bytes(),
+    );
+    assert_eq!(out.status.code(), Some(1));
+    let e = stderr(&out);
+    for m in [
+        "sample 0",
+        "4 joint values",
+        "3 independent",
+        "right_finger",
+    ] {
+        assert!(e.contains(m), "{e:?} lacks {m:?}");
+    }
+}
