@@ -130,14 +130,8 @@ fn coupling_item(
         "///\n/// `{name}.expand(&inputs, &mut thetas)` gives the thetas `{table}.ppoe` takes \
          (a mimic joint's is `multiplier·inputs[master] + offset`)."
     );
-    out.push_str(
-        "#[rustfmt::skip]
-",
-    );
-    out.push_str(
-        "#[allow(clippy::approx_constant, clippy::excessive_precision)]
-",
-    );
+    out.push_str("#[rustfmt::skip]\n");
+    out.push_str("#[allow(clippy::approx_constant, clippy::excessive_precision)]\n");
     let _ = writeln!(
         out,
         "pub const {name}: ppoe::chain::Coupling<'static, {ty}> = ppoe::chain::Coupling::new("

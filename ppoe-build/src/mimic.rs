@@ -65,7 +65,8 @@ impl MimicCoupling {
 /// # Errors
 ///
 /// [`ErrorKind::UnknownJoint`] for a master that does not exist, [`ErrorKind::Mimic`] for a
-/// master that does not move (fixed, planar, floating) and for a cycle of mimic joints.
+/// master that does not move (fixed, planar, floating), for a cycle of mimic joints and for
+/// a composed coupling that is not finite.
 pub(crate) fn couple(urdf: &Urdf, chain: &[&UrdfJoint]) -> Result<Option<MimicCoupling>> {
     if chain.iter().all(|j| j.mimic.is_none()) {
         return Ok(None);
