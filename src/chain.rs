@@ -4,7 +4,8 @@
 //! [`Chain`] and [`ChainView`], with [`Convention`] and [`UncertainPose`]), and the joint
 //! model ([`Joint`], [`JointKind`], the noise models [`screw_noise`] and
 //! [`bending_noise`]), and calibrated kinematics folded into a chain
-//! ([`fold_calibration`]). They are defined in private modules, one per concept (the joint,
+//! ([`fold_calibration`]), and mimic joints, whose values follow other joints'
+//! ([`Coupling`], [`JointSource`], [`Mimic`]). They are defined in private modules, one per concept (the joint,
 //! the chain's kinematics, the PPOE); this module is their one public door.
 //!
 //! Frames: screw axes and the space Jacobian are in the base frame, the body Jacobian and
@@ -30,4 +31,5 @@
 pub use crate::calibration::fold_calibration;
 pub use crate::joint::{bending_noise, screw_noise, Joint, JointConstants, JointKind};
 pub use crate::kinematics::{Chain, ChainView};
+pub use crate::mimic::{Coupling, JointSource, Mimic};
 pub use crate::ppoe::{dense_covariances, BatchError, Convention, UncertainPose};

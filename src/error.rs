@@ -48,6 +48,9 @@ pub enum Error {
     /// A screw axis that must be a unit vector (a joint's rotation part, or a prismatic
     /// joint's translation part) is not one within tolerance; its length may be nonzero.
     NotUnitAxis,
+    /// An index into another input is out of its range (a mimic joint's master beyond the
+    /// independent joint values, see [`crate::chain::Coupling`]).
+    IndexOutOfRange,
 }
 
 impl fmt::Display for Error {
@@ -67,6 +70,7 @@ impl fmt::Display for Error {
             Error::InconsistentConstants => "joint constants do not match its screw axis",
             Error::Overflow => "result is not finite: an intermediate overflowed",
             Error::NotUnitAxis => "screw axis is not a unit vector",
+            Error::IndexOutOfRange => "index out of range",
         })
     }
 }

@@ -74,6 +74,7 @@ pub mod interop;
 mod joint;
 mod kinematics;
 pub mod linalg;
+mod mimic;
 mod ppoe;
 pub mod rotation_forms;
 pub mod scalar;

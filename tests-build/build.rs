@@ -47,6 +47,14 @@ fn main() -> Result<(), ppoe_build::Error> {
         .tip("torso")
         .name("TORSO")
         .write_to_out_dir("torso_table.rs")?;
+
+    // A gripper whose chain has mimic joints (issue #30): the table and its coupling.
+    Config::new("../test_data/urdf/gripper.urdf")
+        .base("base")
+        .tip("left_tip")
+        .scalar(Scalar::Both)
+        .name("GRIPPER")
+        .write_to_out_dir("gripper_table.rs")?;
     Ok(())
 }
 

@@ -111,6 +111,7 @@ fn items(model: &NoiseModel, plain: bool) -> Option<String> {
             })
             .collect(),
         home: id,
+        coupling: None,
     };
     let path = Path::new("/fits/fit.json");
     let noise = Some(Noise {

@@ -98,6 +98,7 @@ fn chain(t: &TableIn, plain: bool) -> RobotChain {
         tip: name(&t.tip, 102),
         joints: joints.collect(),
         home,
+        coupling: None,
     }
 }
 

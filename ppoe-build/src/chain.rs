@@ -5,6 +5,7 @@
 
 use crate::error::{Error, ErrorKind, Result};
 use crate::math::{self, Mat4, IDENTITY};
+use crate::mimic::MimicCoupling;
 use crate::urdf::{Joint as UrdfJoint, JointType, Urdf};
 use ppoe::chain::{Joint, JointKind};
 use ppoe::se3::Transform;
@@ -47,6 +48,10 @@ pub struct RobotChain {
     pub joints: Vec<ChainJoint>,
     /// The home pose M (tip to base at θ = 0), row-major 4×4.
     pub home: [[f64; 4]; 4],
+    /// `None` if no joint of the chain is a mimic joint (the chain then takes one value per
+    /// joint); otherwise how the joints' values follow from the independent values callers
+    /// give ([`MimicCoupling`]; mimic joints keep their own screw, limits and noise).
+    pub coupling: Option<MimicCoupling>,
 }
 
 impl RobotChain {
@@ -107,6 +112,39 @@ impl RobotChain {
     pub fn joint_names(&self) -> Vec<&str> {
         self.joints.iter().map(|j| j.name.as_str()).collect()
     }
+
+    /// The names of the independent joint values the chain takes, in order: the joint
+    /// names if no joint is a mimic joint, else [`MimicCoupling::inputs`].
+    pub fn input_names(&self) -> Vec<&str> {
+        match &self.coupling {
+            Some(c) => c.inputs.iter().map(String::as_str).collect(),
+            None => self.joint_names(),
+        }
+    }
+
+    /// The full joint vector (one value per joint, base to tip) from the independent
+    /// values ([`RobotChain::input_names`]): copied if no joint is a mimic joint, else
+    /// expanded by [`MimicCoupling::expand`].
+    ///
+    /// # Errors
+    ///
+    /// [`ErrorKind::Config`] naming the inputs if there is not one value per input; for a
+    /// mimic joint, a non-finite value or one that overflows.
+    pub fn expand_thetas(&self, inputs: &[f64]) -> Result<Vec<f64>> {
+        match &self.coupling {
+            Some(c) => c.expand(inputs),
+            None if inputs.len() == self.joints.len() => Ok(inputs.to_vec()),
+            None => Err(Error::new(
+                ErrorKind::Config,
+                format!(
+                    "{} joint values given, the chain has {} joints ({})",
+                    inputs.len(),
+                    self.joints.len(),
+                    self.joint_names().join(", ")
+                ),
+            )),
+        }
+    }
 }
 
 impl Urdf {
@@ -120,10 +158,18 @@ impl Urdf {
     /// Fixed joints on the path (before, between and after the moving ones) are folded into
     /// the screw axes and the home pose.
     ///
+    /// Mimic joints (`<mimic joint multiplier offset>`) are joints of the chain like any
+    /// other — their own screw, limits and noise — whose values follow their masters';
+    /// [`RobotChain::coupling`] says how, and which independent values the chain takes
+    /// (a master off the path, or left out of an explicit list, is one of them though it
+    /// has no screw). A mimic of a mimic is followed to its root, composing the couplings.
+    ///
     /// # Errors
     ///
     /// [`ErrorKind::UnknownLink`], [`ErrorKind::TipNotBelowBase`],
-    /// [`ErrorKind::UnsupportedJointType`], [`ErrorKind::Mimic`], [`ErrorKind::NotMovable`],
+    /// [`ErrorKind::UnsupportedJointType`], [`ErrorKind::NotMovable`], for the chain's mimic
+    /// joints [`ErrorKind::UnknownJoint`] (no such master) and [`ErrorKind::Mimic`] (a
+    /// master that does not move, a cycle of mimic joints),
     /// the errors of an explicit list ([`ErrorKind::UnknownJoint`],
     /// [`ErrorKind::DuplicateName`], [`ErrorKind::NotOnPath`]), and for the chain's moving
     /// joints [`ErrorKind::InvalidLimits`], [`ErrorKind::ZeroAxis`] and
@@ -141,6 +187,8 @@ impl Urdf {
             None => self.moving_on_path(&path, base, tip)?,
             Some(list) => self.select(list, &path, base, tip)?,
         };
+        let moving: Vec<&UrdfJoint> = selected.iter().map(|&i| path[i]).collect();
+        let coupling = crate::mimic::couple(self, &moving)?;
         let frames = HomeFrames::new(&path);
         let mut out = Vec::with_capacity(selected.len());
         for &i in &selected {
@@ -159,6 +207,7 @@ impl Urdf {
             tip: tip.to_string(),
             joints: out,
             home,
+            coupling,
         })
     }
 
@@ -292,8 +341,7 @@ impl Urdf {
     }
 }
 
-/// Every joint on the path can be part of a chain: no planar or floating joint, no moving
-/// mimic joint.
+/// Every joint on the path can be part of a chain: no planar or floating joint.
 fn check_path(path: &[&UrdfJoint], base: &str, tip: &str) -> Result<()> {
     for j in path {
         if matches!(j.joint_type, JointType::Planar | JointType::Floating) {
@@ -307,18 +355,6 @@ fn check_path(path: &[&UrdfJoint], base: &str, tip: &str) -> Result<()> {
                 ),
             )
             .at(j.position));
-        }
-        if j.mimic && j.joint_type.is_moving() {
-            return Err(Error::new(
-                ErrorKind::Mimic,
-                format!(
-                    "joint '{}' on the path from '{base}' to '{tip}' is a mimic joint; \
-                     mimic joints are not supported (its value would follow another \
-                     joint's): make it an independent joint or end the chain before it",
-                    j.name
-                ),
-            )
-            .at(j.mimic_position.or(j.position)));
         }
     }
     Ok(())

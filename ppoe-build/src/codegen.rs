@@ -1,4 +1,6 @@
-//! Rust source for a [`RobotChain`]: `pub const` items of type `ppoe::chain::Chain<T, N>`.
+//! Rust source for a [`RobotChain`]: `pub const` items of type `ppoe::chain::Chain<T, N>`,
+//! and for a chain with mimic joints `NAME_COUPLING` (`ppoe::chain::Coupling`: the
+//! independent joint values to the full vector `NAME.ppoe` takes).
 //!
 //! One fixed layout, marked `#[rustfmt::skip]` (so `rustfmt --check` accepts it as it is):
 //! one call argument per line, indented by four spaces per level, every vector of numbers
@@ -9,7 +11,8 @@ use crate::chain::ChainJoint;
 use crate::chain::RobotChain;
 use crate::error::{Error, ErrorKind, Result};
 use crate::literal::{comment_text, float_array, float_lit, str_lit};
-use ppoe::chain::{Joint, JointKind};
+use crate::mimic::MimicCoupling;
+use ppoe::chain::{Joint, JointKind, JointSource};
 use ppoe::Transform;
 use std::fmt::Write as _;
 
@@ -83,8 +86,72 @@ pub fn generate(chain: &RobotChain, name: &str, scalar: Scalar, source: &Source)
         out.push('\n');
         let const_name = format!("{name}{suffix}");
         item(&mut out, chain, &const_name, f32_table, source)?;
+        if let Some(coupling) = &chain.coupling {
+            out.push('\n');
+            let coupling_name = format!("{name}_COUPLING{suffix}");
+            coupling_item(
+                &mut out,
+                chain,
+                coupling,
+                &coupling_name,
+                &const_name,
+                f32_table,
+            )?;
+        }
     }
     Ok(out)
+}
+
+/// `NAME_COUPLING[_F32]: ppoe::chain::Coupling<'static, T>`, for a chain with mimic joints:
+/// what turns the independent joint values into the full vector `NAME.ppoe` takes.
+fn coupling_item(
+    out: &mut String,
+    chain: &RobotChain,
+    coupling: &MimicCoupling,
+    name: &str,
+    table: &str,
+    f32_table: bool,
+) -> Result<()> {
+    let ty = if f32_table { "f32" } else { "f64" };
+    let k = coupling.inputs.len();
+    if f32_table {
+        check_coupling_fits_f32(chain, coupling, name)?;
+    }
+    let _ = writeln!(
+        out,
+        "/// The joint values of `{table}` from its {k} independent value{}, in this order:",
+        if k == 1 { "" } else { "s" }
+    );
+    for input in &coupling.inputs {
+        let _ = writeln!(out, "/// * `{}`", comment_text(input));
+    }
+    let _ = writeln!(
+        out,
+        "///\n/// `{name}.expand(&inputs, &mut thetas)` gives the thetas `{table}.ppoe` takes \
+         (a mimic joint's is `multiplier·inputs[master] + offset`)."
+    );
+    out.push_str("#[rustfmt::skip]\n");
+    out.push_str("#[allow(clippy::approx_constant, clippy::excessive_precision)]\n");
+    let _ = writeln!(
+        out,
+        "pub const {name}: ppoe::chain::Coupling<'static, {ty}> = ppoe::chain::Coupling::new("
+    );
+    let _ = writeln!(out, "    {k},");
+    out.push_str("    &[\n");
+    for (source, joint) in coupling.sources.iter().zip(&chain.joints) {
+        let expr = match source {
+            JointSource::Input(i) => format!("ppoe::chain::JointSource::Input({i})"),
+            JointSource::Mimic(m) => format!(
+                "ppoe::chain::JointSource::Mimic(ppoe::chain::Mimic::new({}, {}, {}))",
+                m.master,
+                float_lit(m.multiplier, f32_table)?,
+                float_lit(m.offset, f32_table)?
+            ),
+        };
+        let _ = writeln!(out, "        {expr}, // {}", comment_text(&joint.name));
+    }
+    out.push_str("    ],\n);\n");
+    Ok(())
 }
 
 /// One `pub const` item: checks, doc comment, attributes, expression.
@@ -189,14 +256,15 @@ fn doc_comment(out: &mut String, chain: &RobotChain, f32_table: bool, source: &S
         out.push_str("/// * joints: none\n");
     } else {
         out.push_str("/// * joints, base to tip:\n");
-        for j in &chain.joints {
+        for (i, j) in chain.joints.iter().enumerate() {
             let _ = writeln!(
                 out,
-                "///   * `{}` ({}, limits [{}, {}])",
+                "///   * `{}` ({}, limits [{}, {}]){}",
                 comment_text(&j.name),
                 kind_str(j.kind),
                 j.lower,
-                j.upper
+                j.upper,
+                mimic_note(chain, i)
             );
         }
     }
@@ -205,6 +273,46 @@ fn doc_comment(out: &mut String, chain: &RobotChain, f32_table: bool, source: &S
             "///\n/// The values are those of the f64 table rounded to f32 (elements below \
              ε²·max of their vector zeroed, see `Joint::from_f64`).\n",
         );
+    }
+}
+
+/// An f32 coupling must hold finite multipliers and offsets, as the f64 one does.
+fn check_coupling_fits_f32(chain: &RobotChain, coupling: &MimicCoupling, name: &str) -> Result<()> {
+    let fits = |x: f64| (x as f32).is_finite();
+    for (source, joint) in coupling.sources.iter().zip(&chain.joints) {
+        if let JointSource::Mimic(m) = source {
+            if !fits(m.multiplier) || !fits(m.offset) {
+                return Err(Error::new(
+                    ErrorKind::NonFinite,
+                    format!(
+                        "{name}: the mimic multiplier {} or offset {} of joint '{}' does not \
+                         fit in f32; use an f64 table",
+                        m.multiplier, m.offset, joint.name
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `", mimic of `master`: θ = m·θ_master + o"` for a mimic joint (index `i` of the chain),
+/// nothing for another.
+fn mimic_note(chain: &RobotChain, i: usize) -> String {
+    let Some(c) = &chain.coupling else {
+        return String::new();
+    };
+    match c.sources.get(i) {
+        Some(JointSource::Mimic(m)) => {
+            let master = c.inputs.get(m.master).map_or("?", String::as_str);
+            format!(
+                ", mimic of `{}`: θ = {}·θ_master + {}",
+                comment_text(master),
+                m.multiplier,
+                m.offset
+            )
+        }
+        _ => String::new(),
     }
 }
 

@@ -34,7 +34,8 @@ pub const C_API_MAX_JOINTS: usize = 16;
 /// [`crate::codegen::check_const_name`]) or that collides with a keyword, a reserved
 /// identifier or a name of the included headers ([`crate::c_names::check_c_name`]), and for
 /// a chain of more than [`C_API_MAX_JOINTS`] joints; [`ErrorKind::NonFinite`] for a NaN, or
-/// for geometry that does not fit in f32 when an f32 table is asked for.
+/// for geometry that does not fit in f32 when an f32 table is asked for;
+/// [`ErrorKind::Mimic`] for a chain with mimic joints (the C API has no coupling).
 pub fn generate(chain: &RobotChain, name: &str, scalar: Scalar, source: &Source) -> Result<String> {
     crate::codegen::check_const_name(name)?;
     crate::c_names::check_c_name(name)?;
@@ -50,6 +51,7 @@ pub fn generate(chain: &RobotChain, name: &str, scalar: Scalar, source: &Source)
             ),
         ));
     }
+    check_no_mimic(chain, name)?;
     let mut out = String::new();
     let _ = writeln!(
         out,
@@ -200,6 +202,32 @@ fn c_str(s: &str) -> String {
     }
     out.push('"');
     out
+}
+
+/// The C API has no mimic coupling: a C table of a chain with mimic joints would take
+/// every joint's value as independent and silently ignore the coupling, so it is refused.
+fn check_no_mimic(chain: &RobotChain, name: &str) -> Result<()> {
+    let Some(coupling) = &chain.coupling else {
+        return Ok(());
+    };
+    let mimic: Vec<&str> = coupling
+        .sources
+        .iter()
+        .zip(&chain.joints)
+        .filter(|(s, _)| matches!(s, ppoe::chain::JointSource::Mimic(_)))
+        .map(|(_, j)| j.name.as_str())
+        .collect();
+    Err(Error::new(
+        ErrorKind::Mimic,
+        format!(
+            "{name}: the chain {:?} → {:?} has mimic joints ({}), which the C API does not \
+             support; generate a Rust table (its NAME_COUPLING expands the independent \
+             values), or end the chain before them",
+            chain.base,
+            chain.tip,
+            mimic.join(", ")
+        ),
+    ))
 }
 
 #[cfg(test)]

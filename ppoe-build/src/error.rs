@@ -45,7 +45,9 @@ pub enum ErrorKind {
     /// upper`, `lower = +∞` or `upper = −∞`. Checked, like [`ErrorKind::ZeroAxis`], only for
     /// the chain's own moving joints (other joints keep their limits as written).
     InvalidLimits,
-    /// A moving joint on the path is a `<mimic>` joint; mimic joints are not supported.
+    /// A mimic joint of the chain cannot be coupled: its master does not move (fixed,
+    /// planar, floating), the mimic joints form a cycle, or their composed coupling is not
+    /// finite. (A master that does not exist is [`ErrorKind::UnknownJoint`].)
     Mimic,
     /// A listed joint exists but is not on the path from base to tip, or the list is not in
     /// path order.

@@ -142,6 +142,26 @@
 //! ([`Config::joints`]) must name joints on the path, moving, each once, base to tip; moving
 //! joints on the path that it leaves out are frozen at 0 (their origin transform is kept).
 //!
+//! ## Mimic joints
+//!
+//! A moving joint with `<mimic joint="master" multiplier="m" offset="o"/>` (defaults 1 and
+//! 0) is a joint of the chain like any other — its own screw axis, its own limits, its own
+//! 6×6 covariance slot (a noise file lists it, and `NAME_NOISE` has its entry) — whose value
+//! is `θ = m·θ_master + o` instead of an input. [`RobotChain::coupling`] holds the
+//! couplings ([`MimicCoupling`]); the chain then takes the *independent* values
+//! ([`RobotChain::input_names`]): its joints that mimic nothing, base to tip, then each
+//! master that is not a joint of the chain (a gripper finger whose master is the other
+//! finger, off the path), in the order of its first follower — such a master has no screw
+//! here, its value only moves its followers. A mimic of a mimic is followed to the joint
+//! that mimics nothing, composing the couplings. The Rust table then also holds
+//! `NAME_COUPLING` (a `ppoe::chain::Coupling`): `NAME_COUPLING.expand(&inputs, &mut thetas)`
+//! gives the `thetas` of `NAME.ppoe`, which clips every joint, mimic ones included, to its
+//! own limits. C tables of such chains are refused ([`ErrorKind::Mimic`]: the C API has no
+//! coupling). Errors, for the chain's joints only: a master that does not exist
+//! ([`ErrorKind::UnknownJoint`]), one that does not move, a cycle of mimic joints, a
+//! composed coupling that overflows ([`ErrorKind::Mimic`]); a non-finite `multiplier` or
+//! `offset` anywhere in the file is [`ErrorKind::NonFinite`] when it is loaded.
+//!
 //! ## Why roxmltree and not urdf-rs
 //!
 //! urdf-rs is the Rust ecosystem's URDF parser, but it cannot reproduce the reference: it
@@ -173,6 +193,7 @@ pub mod error;
 pub mod json;
 pub mod literal;
 mod math;
+mod mimic;
 pub mod noise;
 pub mod table;
 pub mod urdf;
@@ -180,6 +201,7 @@ pub mod urdf;
 pub use chain::{ChainJoint, RobotChain};
 pub use codegen::{Scalar, Source};
 pub use error::{Error, ErrorKind, Position, Result};
+pub use mimic::MimicCoupling;
 pub use ppoe::chain::JointKind;
 pub use table::{Lang, Table};
 pub use urdf::Urdf;

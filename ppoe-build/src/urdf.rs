@@ -8,7 +8,7 @@
 //! * the root element must be `<robot name="…">`;
 //! * its direct `<link name>` children, then its direct `<joint name type>` children with
 //!   their first `<parent link>`, `<child link>`, `<origin xyz rpy>`, `<axis xyz>`,
-//!   `<limit lower upper>` and `<mimic>` children;
+//!   `<limit lower upper>` and `<mimic joint multiplier offset>` children;
 //! * for the pictures, each link's `<visual>` children and the robot's top-level
 //!   `<material>`s ([`Visual`], [`Material`]). A malformed visual never fails the parse (a
 //!   table does not depend on it): it is kept as an error in [`Link::visuals`], for the
@@ -132,8 +132,8 @@ pub struct Joint {
     pub lower: f64,
     /// Upper limit: `upper` of `<limit>`, +∞ if absent; 0 for fixed joints.
     pub upper: f64,
-    /// `true` if the joint has a `<mimic>` element.
-    pub mimic: bool,
+    /// The joint's `<mimic>` element, if any: its value follows another joint's.
+    pub mimic: Option<Mimic>,
     /// Where the `<joint>` element starts.
     pub position: Option<Position>,
     /// Where the `xyz` value of `<axis>` starts (if given).
@@ -144,6 +144,23 @@ pub struct Joint {
     pub mimic_position: Option<Position>,
     /// Where the `<limit>` element starts (if any).
     pub limit_position: Option<Position>,
+}
+
+/// A `<mimic joint multiplier offset>` element: the joint's value is
+/// `multiplier·θ_master + offset`.
+///
+/// Read for every joint when the file is loaded (a missing `joint`, a malformed or
+/// non-finite number is an error there, as everywhere in the file); whether the master
+/// exists, moves and is not itself in a mimic cycle is checked only for the joints of an
+/// extracted chain ([`Urdf::chain`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mimic {
+    /// The master joint's name (`joint`, required).
+    pub joint: String,
+    /// `multiplier`, 1 if absent (URDF's default).
+    pub multiplier: f64,
+    /// `offset`, 0 if absent (URDF's default; radians or metres).
+    pub offset: f64,
 }
 
 /// A parsed URDF: the robot's links and joints in document order.
@@ -428,6 +445,10 @@ impl<'input> Parser<'_, 'input> {
         let (axis, axis_position) = self.axis(node, joint_type, &what)?;
         let (lower, upper, limit_position) = self.limits(node, joint_type, &what)?;
         let mimic_node = first_child(node, "mimic");
+        let mimic = match mimic_node {
+            Some(m) => Some(self.mimic(m, &what)?),
+            None => None,
+        };
         Ok(Joint {
             name,
             joint_type,
@@ -437,7 +458,7 @@ impl<'input> Parser<'_, 'input> {
             axis,
             lower,
             upper,
-            mimic: mimic_node.is_some(),
+            mimic,
             position,
             axis_position,
             child_position,
@@ -604,15 +625,39 @@ impl<'input> Parser<'_, 'input> {
             return Err(Error::new(
                 ErrorKind::NonFinite,
                 format!(
-                    "{}: component {} is {}; geometry must be finite",
+                    "{}: {} is {}; {} must be finite",
                     context(),
-                    i + 1,
-                    out[i]
+                    if N == 1 {
+                        "the value".to_string()
+                    } else {
+                        format!("component {}", i + 1)
+                    },
+                    out[i],
+                    if element == "mimic" {
+                        "a mimic coupling"
+                    } else {
+                        "geometry"
+                    }
                 ),
             )
             .at(pos));
         }
         Ok(Some(out))
+    }
+
+    /// `<mimic joint multiplier offset>`: `joint` required, the numbers finite (1 and 0
+    /// where absent).
+    fn mimic(&self, node: Node<'_, 'input>, what: &str) -> Result<Mimic> {
+        let joint = self.required(node, "joint", what)?;
+        let [multiplier] = self
+            .numbers::<1>(node, "multiplier", what)?
+            .unwrap_or([1.0]);
+        let [offset] = self.numbers::<1>(node, "offset", what)?.unwrap_or([0.0]);
+        Ok(Mimic {
+            joint,
+            multiplier,
+            offset,
+        })
     }
 
     /// An optional limit: one number, ±∞ allowed, NaN not.

@@ -613,9 +613,17 @@ fn tree_error_cases() -> Vec<Case> {
             &["'j'", "lower=\"1\"", "upper=\"-1\""],
         ),
         case(
-            K::Mimic,
+            K::UnknownJoint,
             two_links("<mimic joint=\"other\" multiplier=\"2\"/>"),
-            &["'j'", "mimic"],
+            &["'j'", "mimics", "'other'"],
+        ),
+        case(
+            K::Mimic,
+            robot_of(
+                &["a", "b"],
+                &[joint("j", "revolute", "a", "b", "<mimic joint=\"j\"/>")],
+            ),
+            &["'j'", "cycle"],
         ),
         case(
             K::NotOnPath,

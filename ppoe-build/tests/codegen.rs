@@ -131,6 +131,7 @@ fn synthetic(rng: &mut Rng, n: usize, name_len: usize) -> RobotChain {
         tip: name(rng, name_len),
         joints,
         home,
+        coupling: None,
     }
 }
 

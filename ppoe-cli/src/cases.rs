@@ -2,7 +2,8 @@
 //! `{"cases":[{"thetas":[N numbers],"covs":[N 6×6 row-major]}]}`: read once (a file,
 //! `-` or a pipe), decoded once ([`input::text`]) and parsed once into typed cases. With a
 //! noise model (`--noise`) the cases give joint values only and each gets the model's
-//! covariances; the JSON is not edited and parsed again.
+//! covariances; the JSON is not edited and parsed again. For a chain with mimic joints the
+//! cases give the independent joint values ([`expand_mimic`]).
 
 use crate::{input, load};
 use anyhow::{anyhow, bail};
@@ -101,6 +102,32 @@ pub fn load(path: Option<&Path>, covs: Option<Vec<[[f64; 6]; 6]>>) -> anyhow::Re
         });
     }
     Ok(Input { cases })
+}
+
+/// For a chain with mimic joints, replaces every case's `thetas` — the independent values,
+/// [`RobotChain::input_names`] — by the full joint vector the PPOE takes (a mimic joint's
+/// value is `multiplier·master + offset`, then clipped to its own limits like any joint's
+/// by the PPOE). Called where the cases are read, before [`check_counts`]; a chain without
+/// mimic joints leaves the cases as they are.
+///
+/// # Errors
+/// The first case with another number of independent values (naming them), or whose mimic
+/// values overflow.
+pub fn expand_mimic(robot: &RobotChain, input: &mut Input) -> anyhow::Result<()> {
+    if robot.coupling.is_none() {
+        return Ok(());
+    }
+    for (i, c) in input.cases.iter_mut().enumerate() {
+        c.thetas = robot.expand_thetas(&c.thetas).map_err(|e| {
+            anyhow!(
+                "case {i}: {e} (the chain from '{}' to '{}' has mimic joints, whose values \
+                 follow their masters')",
+                robot.base,
+                robot.tip
+            )
+        })?;
+    }
+    Ok(())
 }
 
 /// Checks the joint counts of every case against the chain.

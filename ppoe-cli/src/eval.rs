@@ -4,7 +4,7 @@
 use crate::args::EvalScalar;
 use crate::cases::{check_counts, Case, Input};
 use anyhow::bail;
-use ppoe::chain::{ChainView, Convention, Joint, UncertainPose};
+use ppoe::chain::{ChainView, Convention, Joint, JointSource, UncertainPose};
 use ppoe::{Mat6, Real, Transform};
 use ppoe_build::RobotChain;
 use serde::Serialize;
@@ -33,6 +33,23 @@ pub struct ChainOut {
     pub home: [[f64; 4]; 4],
     /// `[lower, upper]` per joint; null for an infinite limit.
     pub limits: Vec<[Option<f64>; 2]>,
+    /// Only for a chain with mimic joints: the independent values the cases give, in order.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub inputs: Option<Vec<String>>,
+    /// Only for a chain with mimic joints: per joint, null or how it follows its master.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mimic: Option<Vec<Option<MimicOut>>>,
+}
+
+/// How a mimic joint follows its master: `θ = multiplier·master + offset`.
+#[derive(Serialize, Debug)]
+pub struct MimicOut {
+    /// The master's name (one of the `inputs`).
+    pub master: String,
+    /// The factor on the master's value.
+    pub multiplier: f64,
+    /// Added after the multiplication.
+    pub offset: f64,
 }
 
 /// One result.
@@ -60,7 +77,24 @@ pub fn chain_out(robot: &RobotChain) -> ChainOut {
             .iter()
             .map(|j| [fin(j.lower), fin(j.upper)])
             .collect(),
+        inputs: robot.coupling.as_ref().map(|c| c.inputs.clone()),
+        mimic: robot.coupling.as_ref().map(mimic_out),
     }
+}
+
+/// Per joint of a coupled chain: null, or its master and coupling.
+fn mimic_out(c: &ppoe_build::MimicCoupling) -> Vec<Option<MimicOut>> {
+    c.sources
+        .iter()
+        .map(|s| match s {
+            JointSource::Input(_) => None,
+            JointSource::Mimic(m) => Some(MimicOut {
+                master: c.inputs.get(m.master).cloned().unwrap_or_default(),
+                multiplier: m.multiplier,
+                offset: m.offset,
+            }),
+        })
+        .collect()
 }
 
 /// The PPOE of every case, in f64 or f32.

@@ -89,6 +89,20 @@ pub fn parse_input(text: &str) -> anyhow::Result<FitInput> {
     Ok((samples, r))
 }
 
+/// For a chain with mimic joints, the samples give the independent joint values
+/// ([`RobotChain::input_names`]); the fit needs every chain joint's, mimic ones included.
+fn expand_mimic(robot: &RobotChain, samples: &mut [CampaignSample]) -> anyhow::Result<()> {
+    if robot.coupling.is_none() {
+        return Ok(());
+    }
+    for (i, s) in samples.iter_mut().enumerate() {
+        s.thetas = robot
+            .expand_thetas(&s.thetas)
+            .with_context(|| format!("sample {i}"))?;
+    }
+    Ok(())
+}
+
 fn kind(m: &Measurement) -> &'static str {
     match m {
         Measurement::Pose(_) => "pose",
@@ -124,7 +138,8 @@ pub fn run(
     model: Model,
     estimate: Estimate,
 ) -> anyhow::Result<Value> {
-    let (samples, r) = parse_input(text)?;
+    let (mut samples, r) = parse_input(text)?;
+    expand_mimic(robot, &mut samples)?;
     let (joints, home) = crate::eval::core_joints::<f64>(robot);
     let start = Instant::now();
     let mut last = Instant::now();

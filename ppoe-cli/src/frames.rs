@@ -59,10 +59,11 @@ fn prepare(
         Some(applied) => (Some(applied.covs), applied.folds),
         None => (None, Vec::new()),
     };
-    let cases = cases::load(input, covs)?;
+    let mut cases = cases::load(input, covs)?;
     if cases.cases.is_empty() {
         bail!("the input has no cases");
     }
+    cases::expand_mimic(&robot.chain, &mut cases)?;
     cases::check_counts(&robot.chain, &cases)?;
     let n = cases.cases.len();
     match sink {

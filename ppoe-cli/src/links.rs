@@ -9,6 +9,9 @@
 //!   └─ cam: fixed → camera
 //! ```
 //!
+//! A mimic joint says whose value it follows: `finger_l: prismatic, axis (0, 1, 0), limits
+//! [0, 0.03], mimic of finger_r: 0.8·finger_r + 0.005 → pad_l`.
+//!
 //! A link's only child joint stays at its parent's indentation, so a serial chain of any
 //! length is printed in lines of bounded width; branches are drawn with `├─`/`└─`.
 
@@ -30,6 +33,16 @@ fn joint_line(j: &Joint) -> String {
         } else {
             s.push_str(", no limits");
         }
+    }
+    if let (Some(m), true) = (&j.mimic, j.joint_type.is_moving()) {
+        let _ = write!(
+            s,
+            ", mimic of {}: {}·{} + {}",
+            shown(&m.joint),
+            m.multiplier,
+            shown(&m.joint),
+            m.offset
+        );
     }
     let _ = write!(s, " → {}", shown(&j.child));
     s
@@ -109,6 +122,26 @@ mod tests {
                         ├─ j2: prismatic, axis (1, 0, 0), limits [0, 0.5] → l2\n  \
                         │  j3: continuous, axis (1, 0, 0), no limits → l3\n  \
                         └─ cam: fixed → c\n";
+        assert_eq!(tree(&urdf), expected);
+    }
+
+    #[test]
+    fn mimic_joints_name_their_master() {
+        let urdf = Urdf::parse(
+            r#"<robot name="g"><link name="p"/><link name="a"/><link name="b"/>
+            <joint name="r" type="prismatic"><parent link="p"/><child link="a"/>
+              <axis xyz="0 1 0"/><limit lower="0" upper="0.04"/></joint>
+            <joint name="l" type="prismatic"><parent link="p"/><child link="b"/>
+              <axis xyz="0 1 0"/><limit lower="0" upper="0.03"/>
+              <mimic joint="r" multiplier="-0.8" offset="0.005"/></joint>
+            </robot>"#,
+        )
+        .unwrap();
+        let expected = "robot 'g': 3 links, 2 joints (2 moving)\n\
+                        p\n  \
+                        ├─ r: prismatic, axis (0, 1, 0), limits [0, 0.04] → a\n  \
+                        └─ l: prismatic, axis (0, 1, 0), limits [0, 0.03], mimic of r: \
+                        -0.8·r + 0.005 → b\n";
         assert_eq!(tree(&urdf), expected);
     }
 }

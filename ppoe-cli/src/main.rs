@@ -63,7 +63,9 @@ enum Command {
     /// Input (file or stdin): {"cases":[{"thetas":[N numbers],"covs":[N 6×6 row-major]}]}
     /// (covariances rotation first, in the base frame, right perturbation of each joint).
     /// Output (stdout): {"chain":{"base","tip","joints","screw_axes","home","limits"},
-    /// "results":[{"thetas_clipped","pose","cov"}]}; infinite limits are null.
+    /// "results":[{"thetas_clipped","pose","cov"}]}; infinite limits are null. For a chain
+    /// with mimic joints, "thetas" are its independent values (`chain.inputs` of the output;
+    /// `ppoe links` shows each mimic joint's master), "covs" one per chain joint.
     #[command(after_help = EXIT_CODES_SHORT)]
     Eval(commands::eval::EvalArgs),
     /// The seed example: the seed robot (its table generated at build time), its initial

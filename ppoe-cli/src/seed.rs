@@ -46,6 +46,7 @@ pub fn robot_chain() -> ppoe_build::RobotChain {
             })
             .collect(),
         home: SEED.home.to_matrix4(),
+        coupling: None,
     }
 }
 

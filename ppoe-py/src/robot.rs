@@ -65,6 +65,14 @@ impl Robot {
         let err = |e: ppoe_build::Error| PpoeError::new_err(e.to_string());
         let robot = ppoe_build::Urdf::parse(urdf).map_err(err)?;
         let chain = robot.chain(base, tip, joints.as_deref()).map_err(err)?;
+        if chain.coupling.is_some() {
+            // Every call here takes one value per chain joint; a mimic joint's value follows
+            // its master, which this package does not expand yet: refused, not ignored.
+            return Err(PpoeError::new_err(format!(
+                "the chain from '{base}' to '{tip}' has mimic joints, which ppoe's Python \
+                 package does not support yet (ppoe eval and ppoe-build's tables do)"
+            )));
+        }
         // As RobotChain::to_core_joints, without leaking the names (the math needs none).
         let exact: Vec<Joint<f64>> = chain
             .joints

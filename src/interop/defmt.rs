@@ -113,6 +113,7 @@ impl Format for Error {
             Error::InconsistentConstants => "InconsistentConstants",
             Error::Overflow => "Overflow",
             Error::NotUnitAxis => "NotUnitAxis",
+            Error::IndexOutOfRange => "IndexOutOfRange",
         };
         write!(f, "{=str}", name)
     }

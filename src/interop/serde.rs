@@ -232,6 +232,7 @@ enum ErrorRepr {
     InconsistentConstants,
     Overflow,
     NotUnitAxis,
+    IndexOutOfRange,
 }
 
 impl Serialize for Error {

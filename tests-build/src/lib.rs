@@ -4,7 +4,8 @@
 //! computes at run time.
 //!
 //! Tables: [`SEED`] and [`SEED_F32`] (the seed robot of pytransform3d's PPOE example,
-//! `linkmount` → `tcp`), [`GANTRY_F32`] (prismatic joints), [`TORSO`] (a single joint), and
+//! `linkmount` → `tcp`), [`GANTRY_F32`] (prismatic joints), [`TORSO`] (a single joint),
+//! [`GRIPPER`] with [`GRIPPER_COUPLING`] (mimic joints), and
 //! [`RANDOM`]: 40 random robots (the `ppoe-test-robots` crate, `robots/`: every joint type, fixed joints between
 //! moving ones, rpy everywhere, unnormalised axes, hostile names, extreme finite numbers).
 #![no_std]
@@ -13,6 +14,8 @@
 include!(concat!(env!("OUT_DIR"), "/seed_table.rs"));
 include!(concat!(env!("OUT_DIR"), "/gantry_table.rs"));
 include!(concat!(env!("OUT_DIR"), "/torso_table.rs"));
+// A chain with mimic joints: `GRIPPER`, `GRIPPER_F32` and their `GRIPPER_COUPLING[_F32]`.
+include!(concat!(env!("OUT_DIR"), "/gripper_table.rs"));
 // The seed robot calibrated by `OUT_DIR/seed_calibrated.json` (issue #27): the folded chain,
 // with its noise items.
 include!(concat!(env!("OUT_DIR"), "/seed_calibrated_table.rs"));

@@ -8,6 +8,7 @@ use ppoe::chain::{Chain, ChainView, Convention, Joint};
 use ppoe::{Mat6, Real, Transform};
 use ppoe_build::{ChainJoint, Config, RobotChain, Urdf};
 use tests_build::{GANTRY_F32, RANDOM, RANDOM_REJECTED, SEED, SEED_F32, SEED_IN_FLASH, TORSO};
+use tests_build::{GRIPPER, GRIPPER_COUPLING, GRIPPER_COUPLING_F32, GRIPPER_F32};
 
 fn urdf(name: &str) -> String {
     format!("{}/../test_data/urdf/{name}", env!("CARGO_MANIFEST_DIR"))
@@ -283,4 +284,36 @@ fn calibrated_table_is_the_unfolded_calibrated_product() {
             .fold(0.0, f64::max);
         assert!(d < 1e-13 && r < 1e-13, "{thetas:?}: {d:e} {r:e}");
     }
+}
+
+/// The table of a chain with mimic joints holds the run-time chain and its coupling; the
+/// coupling's expansion feeds the table's PPOE exactly as the run-time chain's does.
+#[test]
+fn gripper_table_and_coupling() {
+    let chain = runtime("gripper.urdf", "base", "left_tip");
+    assert_values(&GRIPPER.as_ref(), &chain);
+    assert_values(&GRIPPER_F32.as_ref(), &chain);
+    let coupling = chain.coupling.as_ref().unwrap();
+    assert_eq!(GRIPPER_COUPLING.inputs, coupling.inputs.len());
+    assert_eq!(GRIPPER_COUPLING.joints, &coupling.sources[..]);
+    assert_eq!(GRIPPER_COUPLING_F32.inputs, 3);
+    let q = [0.3, -0.4, 0.02];
+    let mut thetas = [0.0; 4];
+    GRIPPER_COUPLING.expand(&q, &mut thetas).unwrap();
+    assert_eq!(thetas.to_vec(), chain.expand_thetas(&q).unwrap());
+    let mut thetas32 = [0.0_f32; 4];
+    GRIPPER_COUPLING_F32
+        .expand(&[0.3, -0.4, 0.02], &mut thetas32)
+        .unwrap();
+    // 0.8·0.02 + 0.005 and −0.5·(−0.4) + 0.1, in f32.
+    assert!((thetas32[2] - 0.021).abs() < 1e-8 && (thetas32[3] - 0.3).abs() < 1e-7);
+    let covs = [Mat6::identity() * 1e-4; 4];
+    let table = GRIPPER.ppoe(&thetas, &covs, Convention::Right);
+    let (joints, home) = (chain.to_core_joints(), chain.home_transform());
+    let view = ChainView {
+        joints: &joints,
+        home,
+    };
+    let run_time = view.ppoe(&thetas, &covs, Convention::Right).unwrap();
+    assert_eq!((table.pose, table.cov), (run_time.pose, run_time.cov));
 }

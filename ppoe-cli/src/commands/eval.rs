@@ -52,7 +52,8 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
     let mut robot = load::robot(&a.chain)?;
     // The noise model first: a calibration replaces the chain the cases are checked against.
     let covs = noise::from_args(&a.noise, &mut robot.chain)?.map(|n| n.covs);
-    let input = cases::load(a.input.as_deref(), covs)?;
+    let mut input = cases::load(a.input.as_deref(), covs)?;
+    cases::expand_mimic(&robot.chain, &mut input)?;
     let out = eval::eval(&robot.chain, &input, a.scalar, a.convention.core())?;
     let mut text = match a.format {
         EvalFormat::Json => to_json(&out, a.pretty)?,
