@@ -293,9 +293,14 @@ impl Config {
             )
             .in_file(&self.urdf));
         };
-        let urdf = Urdf::parse_bytes(bytes).map_err(|e| e.in_file(&self.urdf))?;
+        // Either step fails on a xacro file (malformed XML, or links only its macros make).
+        let hinted = |e: Error| {
+            e.with_xacro_hint(&self.urdf.to_string_lossy(), bytes)
+                .in_file(&self.urdf)
+        };
+        let urdf = Urdf::parse_bytes(bytes).map_err(hinted)?;
         urdf.chain(base, tip, self.joints.as_deref())
-            .map_err(|e| e.in_file(&self.urdf))
+            .map_err(hinted)
     }
 
     /// Reads the URDF and extracts the chain (the values a generated table holds): with a
