@@ -168,6 +168,7 @@ pub mod calibration;
 pub mod chain;
 pub mod codegen;
 pub mod codegen_c;
+pub mod collada;
 mod dtd;
 pub mod error;
 pub mod json;
