@@ -137,32 +137,43 @@ pub fn ensure_dir(dir: &Path) -> anyhow::Result<()> {
 }
 
 /// The URDF visuals of `robot` (from the URDF already parsed), meshes looked up beside
-/// `urdf_path` when the URDF is a regular file, at most `surface.mesh_triangles` triangles
-/// per mesh; what is skipped or reduced is noted on stderr.
+/// `urdf_path` when the URDF is a regular file and in `surface.package_dirs`, at most
+/// `surface.mesh_triangles` triangles per mesh; what is skipped or reduced is noted on
+/// stderr (the picture is drawn without it).
 ///
 /// # Errors
-/// A `<visual>` element is malformed.
+/// A `<visual>` element is malformed, or a `--package-dir` is not a directory.
 pub fn robot_visuals(
     robot: &crate::load::Robot,
     urdf_path: &Path,
     surface: &SurfaceArgs,
 ) -> anyhow::Result<Visuals> {
     let name = &robot.source.name;
-    let mesh_dir = if robot.source.regular {
-        urdf_path.parent()
-    } else {
-        None
-    };
-    let limits = crate::meshfile::Limits {
-        max_triangles: surface.mesh_triangles,
-        ..Default::default()
+    for (package, path) in &surface.package_dirs {
+        if !path.is_dir() {
+            anyhow::bail!(
+                "--package-dir {package}={}: not a directory",
+                path.display()
+            );
+        }
+    }
+    let search = crate::visuals::MeshSearch {
+        dir: if robot.source.regular {
+            urdf_path.parent().map(Path::to_path_buf)
+        } else {
+            None
+        },
+        packages: surface.package_dirs.clone(),
+        limits: crate::meshfile::Limits {
+            max_triangles: surface.mesh_triangles,
+            ..Default::default()
+        },
     };
     let (visuals, notices) = Visuals::from_urdf_with(
         &robot.urdf,
         &robot.chain.base,
         &robot.chain.joint_names(),
-        mesh_dir,
-        &limits,
+        &search,
     )
     .with_context(|| name.clone())?;
     for n in notices {

@@ -314,3 +314,119 @@ fn hostile_mesh_files_are_skipped_by_name() {
         "{stderr}"
     );
 }
+
+/// `render --format html` of the UR-style test robot: its COLLADA meshes (a cube of 12
+/// triangles, a millimetre Y-up tetrahedron of 4) are in the page, with the bounding
+/// boxes their files' comments derive by hand, when `--package-dir` says where their
+/// package is; without it they are skipped as an unknown package and the page is
+/// still written.
+#[test]
+fn collada_meshes_are_drawn_from_their_package_dir() {
+    let dir = tmp("collada");
+    let input = dir.join("cases.json");
+    std::fs::write(&input, zero_cases(3, 1)).unwrap();
+    let (i, d) = (input.to_str().unwrap(), dir.to_str().unwrap());
+    let args = |extra: &[&'static str]| {
+        let mut a = vec![
+            "render",
+            "--urdf",
+            "test_data/urdf/ur_style.urdf",
+            "--base",
+            "base_link",
+            "--tip",
+            "tool0",
+            "--input",
+            i,
+            "--format",
+            "html",
+            "--out",
+            d,
+        ];
+        a.extend_from_slice(extra);
+        a
+    };
+    let package = [
+        "--package-dir",
+        "ppoe_ur_style=test_data/packages/ppoe_ur_style",
+    ];
+    let out = run(&args(&package));
+    let html = std::fs::read_to_string(dir.join("ppoe-render.html")).unwrap();
+    let shapes = page_data(&html)["shapes"].as_array().unwrap().clone();
+    let mut found: Vec<(usize, [[f64; 2]; 3])> = shapes
+        .iter()
+        .map(|s| {
+            let mut b = [[f64::INFINITY, f64::NEG_INFINITY]; 3];
+            // Flat x, y, z triples, rounded to 1e-7 m (exact for these decimals).
+            let v = s["v"].as_array().unwrap();
+            for (n, x) in v.iter().enumerate() {
+                let (k, x) = (n % 3, x.as_f64().unwrap());
+                b[k] = [b[k][0].min(x), b[k][1].max(x)];
+            }
+            (s["f"].as_array().unwrap().len(), b)
+        })
+        .collect();
+    found.sort_by_key(|(n, _)| *n);
+    let cube = [[-0.05, 0.05], [-0.05, 0.05], [0.0, 0.1]];
+    let tetra = [[0.0, 0.1], [-0.1, 0.0], [0.0, 0.1]];
+    assert_eq!(found, vec![(4, tetra), (12, cube)]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("unknown package 'ppoe_missing_description'"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("base.dae"), "{stderr}");
+    // Without the package's directory: skipped by name, the page written all the same.
+    std::fs::remove_file(dir.join("ppoe-render.html")).unwrap();
+    let stderr = String::from_utf8_lossy(&run(&args(&[])).stderr).into_owned();
+    for mesh in ["base.dae", "shoulder_mm.dae"] {
+        assert!(
+            stderr.lines().any(|l| l.contains(mesh)
+                && l.contains("unknown package 'ppoe_ur_style' (give --package-dir")),
+            "{stderr}"
+        );
+    }
+    let html = std::fs::read_to_string(dir.join("ppoe-render.html")).unwrap();
+    assert!(page_data(&html)["shapes"].as_array().unwrap().is_empty());
+}
+
+/// A `--package-dir` without `=` is a usage error; one that is not a directory an input
+/// error naming it.
+#[test]
+fn bad_package_dirs_are_refused() {
+    let dir = tmp("package-dir");
+    let input = dir.join("cases.json");
+    std::fs::write(&input, zero_cases(3, 1)).unwrap();
+    let (i, d) = (input.to_str().unwrap(), dir.to_str().unwrap());
+    for (value, code, expected) in [
+        ("ppoe_ur_style", 2, "expected NAME=PATH"),
+        ("=x", 2, "expected NAME=PATH"),
+        (
+            "ppoe_ur_style=test_data/urdf/ur_style.urdf",
+            1,
+            "not a directory",
+        ),
+    ] {
+        let out = Command::new(BIN)
+            .args([
+                "render",
+                "--urdf",
+                "test_data/urdf/ur_style.urdf",
+                "--base",
+                "base_link",
+                "--tip",
+                "tool0",
+                "--input",
+                i,
+                "--out",
+                d,
+                "--package-dir",
+                value,
+            ])
+            .current_dir(repo())
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(code), "{value}: {stderr}");
+        assert!(stderr.contains(expected), "{value}: {stderr}");
+    }
+}
