@@ -20,13 +20,21 @@
 //!
 //! ## In a firmware's `build.rs`
 //!
+//! ppoe is not on crates.io yet: depend on one copy of it by path (your clone's path) or
+//! by git (the project's git URL, the same `rev` for both crates):
+//!
 //! ```toml
 //! [dependencies]
-//! ppoe = "0.1"
+//! ppoe = { path = "/path/to/ppoe" }          # or { git = "<the project's git URL>", rev = "…" }
 //!
 //! [build-dependencies]
-//! ppoe-build = "0.1"
+//! ppoe-build = { path = "/path/to/ppoe/ppoe-build" }
 //! ```
+//!
+//! After publication the crates.io form will do: `ppoe = "0.1"`, `ppoe-build = "0.1"`.
+//! The generated table checks at compile time that the `ppoe` it is compiled against
+//! reads its format ([`codegen::TABLE_FORMAT`] against `ppoe::TABLE_FORMAT`), so a
+//! mismatched pair fails to build with a message naming both.
 //!
 //! ```no_run
 //! // build.rs
