@@ -114,6 +114,13 @@ pub struct SurfaceArgs {
     #[arg(long, value_name = "N", default_value_t = crate::meshfile::Limits::default().max_triangles,
           value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=100_000_000))]
     pub mesh_triangles: usize,
+    /// Scale the drawn surface by K about the mean tool position, so that a small
+    /// noise can be seen; the legend then says "surface drawn ×K" (1: true scale).
+    /// Default for pictures: auto (a surface under 1/40 of the arm's extent is scaled by
+    /// the smallest 1, 2 or 5 × 10ⁿ that makes it 1/10 of it; an animation keeps its first
+    /// frame's factor); for `mesh`: 1.
+    #[arg(long, value_name = "auto|K", value_parser = crate::exaggerate::parse)]
+    pub exaggerate: Option<crate::exaggerate::Exaggeration>,
     /// Where the ROS package NAME is: a URDF mesh `package://NAME/rest` is read from
     /// PATH/rest (repeatable, one per package; the last one of a NAME wins). Without it a
     /// package is looked for beside the URDF (its directory and the parent).

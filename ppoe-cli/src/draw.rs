@@ -3,6 +3,7 @@
 //! second-order mean, as a [`picture::Frame`].
 
 use crate::args::{SurfaceArg, SurfaceArgs};
+use crate::exaggerate::{self, Exaggeration};
 use crate::output::println;
 use crate::picture::{self, Frame};
 use crate::seed;
@@ -314,7 +315,8 @@ pub fn demo(
     let mut visuals = seed::visuals()?;
     visuals.fold(&seed.folds);
 
-    let initial = state(
+    let exaggeration = surface.exaggerate.unwrap_or(Exaggeration::Auto);
+    let mut initial = state(
         format!("ppoe seed: frame 0/{n_frames}"),
         &chain,
         &seed.home_frames,
@@ -326,8 +328,12 @@ pub fn demo(
         &label,
         &visuals,
     )?;
+    // The initial frame's factor for every picture of the demo (see `frames::run`).
+    let factor = exaggerate::factor(exaggeration, &initial.frame);
+    crate::frames::note_auto(exaggeration, factor, &mut false);
+    exaggerate::apply(&mut initial.frame, factor);
     print_initial(&initial);
-    println!("surface: {label}");
+    println!("surface: {}", initial.frame.sigma_label);
 
     ensure_dir(out)?;
     let png = out.join("ppoe-seed.png");
@@ -346,7 +352,9 @@ pub fn demo(
             &label,
             &visuals,
         );
-        Ok(s.with_context(|| format!("frame {step}"))?.frame)
+        let mut frame = s.with_context(|| format!("frame {step}"))?.frame;
+        exaggerate::apply(&mut frame, factor);
+        Ok(frame)
     };
     let frames = picture::Frames {
         n: n_frames,

@@ -430,3 +430,157 @@ fn bad_package_dirs_are_refused() {
         assert!(stderr.contains(expected), "{value}: {stderr}");
     }
 }
+
+/// The vertices of an OBJ written by `ppoe mesh`.
+fn obj_vertices(path: &Path) -> Vec<[f64; 3]> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let v: Vec<f64> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect()
+}
+
+/// Real noise (3 mrad per joint, rotation only) on the UR-style arm, whose 1σ surface is
+/// a few millimetres across.
+fn small_noise_cases() -> String {
+    let mut cov = vec![vec![0.0; 6]; 6];
+    for (k, row) in cov.iter_mut().enumerate().take(3) {
+        row[k] = 9e-6;
+    }
+    json!({"cases": [{"thetas": [0.0, 0.5, 0.5], "covs": vec![cov; 3]}]}).to_string()
+}
+
+/// `--exaggerate` (issue #30, point 5): `mesh --exaggerate 1` is the mesh of the existing
+/// output byte for byte; with 7 every surface vertex is 7 times as far from the tool
+/// (the skeleton and the second-order mean unchanged), and the header says ×7.
+#[test]
+fn exaggerate_scales_the_surface_about_the_tool_and_says_so() {
+    let dir = tmp("exaggerate-mesh");
+    let input = dir.join("cases.json");
+    std::fs::write(&input, small_noise_cases()).unwrap();
+    let (i, d) = (input.to_str().unwrap(), dir.to_str().unwrap());
+    let mesh = |extra: &[&str], name: &str| {
+        let mut a = vec![
+            "mesh",
+            "--urdf",
+            "test_data/urdf/ur_style.urdf",
+            "--base",
+            "base_link",
+            "--tip",
+            "tool0",
+            "--input",
+            i,
+            "--grid",
+            "5",
+            "--out",
+            d,
+        ];
+        a.extend_from_slice(extra);
+        run(&a);
+        let to = dir.join(name);
+        std::fs::rename(dir.join("ppoe-mesh-0.obj"), &to).unwrap();
+        to
+    };
+    let plain = mesh(&[], "plain.obj");
+    let one = mesh(&["--exaggerate", "1"], "one.obj");
+    let seven = mesh(&["--exaggerate", "7"], "seven.obj");
+    assert_eq!(std::fs::read(&plain).unwrap(), std::fs::read(&one).unwrap());
+    let (p, s) = (obj_vertices(&plain), obj_vertices(&seven));
+    assert_eq!(p.len(), 25 + 5 + 1); // the grid, base + 3 joints + tool, the mean
+    assert_eq!(p[25..], s[25..]);
+    let tool = p[29];
+    let mut largest = 0.0f64;
+    for (a, b) in p[..25].iter().zip(&s[..25]) {
+        for k in 0..3 {
+            let (da, db) = (a[k] - tool[k], b[k] - tool[k]);
+            assert!((db - 7.0 * da).abs() <= 1e-12, "{a:?} {b:?}");
+            largest = largest.max(da.abs());
+        }
+    }
+    assert!(largest > 1e-4, "the surface is not a point: {largest}");
+    let header = std::fs::read_to_string(&seven).unwrap();
+    assert!(
+        header.contains("surface drawn ×7 about the tool (not to scale)"),
+        "{header}"
+    );
+    assert!(!std::fs::read_to_string(&plain).unwrap().contains("drawn ×"));
+}
+
+/// Pictures enlarge a surface too small to see by default, saying so in the legend (the
+/// HTML view's label) and on stderr; `--exaggerate 1` draws it at true scale, and a
+/// visible surface (the seed's) is not enlarged.
+#[test]
+fn pictures_enlarge_an_invisible_surface_by_a_labelled_factor() {
+    let dir = tmp("exaggerate-html");
+    let input = dir.join("cases.json");
+    std::fs::write(&input, small_noise_cases()).unwrap();
+    let (i, d) = (input.to_str().unwrap(), dir.to_str().unwrap());
+    let html = |extra: &[&str]| {
+        let mut a = vec![
+            "render",
+            "--urdf",
+            "test_data/urdf/ur_style.urdf",
+            "--base",
+            "base_link",
+            "--tip",
+            "tool0",
+            "--input",
+            i,
+            "--format",
+            "html",
+            "--out",
+            d,
+        ];
+        a.extend_from_slice(extra);
+        let out = run(&a);
+        let page = std::fs::read_to_string(dir.join("ppoe-render.html")).unwrap();
+        let label = page_data(&page)["label"].as_str().unwrap().to_string();
+        (label, String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (label, stderr) = html(&[]);
+    // The arm spans about 0.6 m; 3 mrad at ≈0.75 m from the axes gives a surface of a
+    // few millimetres: under 1/40 of the arm, enlarged by a round factor of 10 or more.
+    let factor: f64 = label
+        .split("surface drawn ×")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|k| k.parse().ok())
+        .unwrap_or_else(|| panic!("{label}"));
+    assert!(factor >= 10.0, "{label}");
+    assert!(
+        stderr.contains(&format!("drawn ×{factor} about the tool")),
+        "{stderr}"
+    );
+    let (label, stderr) = html(&["--exaggerate", "1"]);
+    assert!(
+        !label.contains("drawn ×") && !stderr.contains("drawn ×"),
+        "{label}"
+    );
+    let seed = dir.join("seed.json");
+    std::fs::write(&seed, zero_cases(6, 1)).unwrap();
+    let out = run(&[
+        "render",
+        "--urdf",
+        "test_data/urdf/seed.urdf",
+        "--base",
+        "linkmount",
+        "--tip",
+        "tcp",
+        "--input",
+        seed.to_str().unwrap(),
+        "--format",
+        "html",
+        "--out",
+        d,
+    ]);
+    let page = std::fs::read_to_string(dir.join("ppoe-render.html")).unwrap();
+    assert!(!page_data(&page)["label"]
+        .as_str()
+        .unwrap()
+        .contains("drawn ×"));
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("drawn ×"));
+}
