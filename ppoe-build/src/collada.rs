@@ -31,6 +31,18 @@ pub struct Mesh {
     pub triangles: Vec<[u32; 3]>,
 }
 
+/// The most triangles a document may make. A geometry instanced by many nodes is copied
+/// once per instance, so a small file could otherwise ask for any number; 8 million is
+/// six times a 64 MiB binary STL's, and the pictures reduce meshes far below it.
+pub const MAX_TRIANGLES: usize = 8_000_000;
+
+/// The most `<instance_geometry>` elements, and the deepest `<node>` nesting, read: a
+/// bound on the work of placing them (each instance multiplies its ancestors' transforms).
+pub const MAX_INSTANCES: usize = 100_000;
+
+/// See [`MAX_INSTANCES`].
+pub const MAX_NODE_DEPTH: usize = 1_000;
+
 type M4 = [[f64; 4]; 4];
 
 const IDENTITY: M4 = [
@@ -176,8 +188,20 @@ fn instances(root: Node<'_, '_>) -> Result<Vec<(String, M4)>> {
     };
     let mut out = Vec::new();
     for inst in scene.descendants().filter(|n| is(n, "instance_geometry")) {
+        if out.len() == MAX_INSTANCES {
+            return Err(err(
+                inst,
+                format!("more than {MAX_INSTANCES} <instance_geometry>"),
+            ));
+        }
         let mut m = IDENTITY;
-        for node in inst.ancestors().filter(|n| is(n, "node")) {
+        for (depth, node) in inst.ancestors().filter(|n| is(n, "node")).enumerate() {
+            if depth == MAX_NODE_DEPTH {
+                return Err(err(
+                    inst,
+                    format!("<node>s nested deeper than {MAX_NODE_DEPTH}"),
+                ));
+            }
             m = mul(&node_transform(node)?, &m);
         }
         let url = inst.attribute("url").unwrap_or("");
@@ -304,12 +328,14 @@ fn add_geometry(g: Node<'_, '_>, m: &M4, out: &mut Mesh) -> Result<()> {
                 ));
             }
             let index = |k: usize| (first + poly[k]) as u32;
+            if out.triangles.len() + poly.len().saturating_sub(2) > MAX_TRIANGLES {
+                return Err(err(prim, format!("more than {MAX_TRIANGLES} triangles")));
+            }
             for k in 1..poly.len().saturating_sub(1) {
                 out.triangles.push([index(0), index(k), index(k + 1)]);
             }
         }
     }
-    debug_assert!(out.triangles.iter().flatten().all(|&i| i < count));
     Ok(())
 }
 

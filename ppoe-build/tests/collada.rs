@@ -135,3 +135,48 @@ fn malformed_documents_are_errors_naming_the_problem() {
         .to_string()
         .contains("not UTF-8"));
 }
+
+/// A small file cannot ask for unbounded work: a geometry instanced more often than
+/// `MAX_INSTANCES`, or under nodes nested deeper than `MAX_NODE_DEPTH`, is an error.
+#[test]
+fn instancing_is_bounded() {
+    use ppoe_build::collada::{MAX_INSTANCES, MAX_NODE_DEPTH};
+    let scene = |nodes: &str| {
+        triangle("", "0 0 0 1 0 0 0 1 0", "0 1 2").replace(
+            "</library_geometries>",
+            &format!(
+                "</library_geometries><library_visual_scenes><visual_scene id=\"S\">{nodes}\
+                 </visual_scene></library_visual_scenes>"
+            ),
+        )
+    };
+    let one = "<node><instance_geometry url=\"#g\"/></node>";
+    let m = parse(scene(&one.repeat(3)).as_bytes()).unwrap();
+    assert_eq!(m.triangles.len(), 3);
+    let e = parse(scene(&one.repeat(MAX_INSTANCES + 1)).as_bytes()).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("more than 100000 <instance_geometry>"),
+        "{e}"
+    );
+    let deep = format!(
+        "{}<instance_geometry url=\"#g\"/>{}",
+        "<node>".repeat(MAX_NODE_DEPTH + 1),
+        "</node>".repeat(MAX_NODE_DEPTH + 1)
+    );
+    let e = parse(scene(&deep).as_bytes()).unwrap_err();
+    assert!(e.to_string().contains("nested deeper than 1000"), "{e}");
+    // 100 triangles instanced 90 000 times would be 9 million triangles.
+    let many = triangle("", "0 0 0 1 0 0 0 1 0", &"0 1 2 ".repeat(100))
+        .replace("count=\"1\"", "count=\"100\"")
+        .replace(
+            "</library_geometries>",
+            &format!(
+                "</library_geometries><library_visual_scenes><visual_scene id=\"S\">{}\
+                 </visual_scene></library_visual_scenes>",
+                one.repeat(90_000)
+            ),
+        );
+    let e = parse(many.as_bytes()).unwrap_err();
+    assert!(e.to_string().contains("more than 8000000 triangles"), "{e}");
+}
