@@ -313,8 +313,9 @@ fn add_geometry(g: Node<'_, '_>, m: &M4, out: &mut Mesh) -> Result<()> {
     let positions = positions(mesh)?;
     let first = out.vertices.len();
     out.vertices.extend(positions.iter().map(|p| apply(m, *p)));
-    let count =
-        u32::try_from(out.vertices.len()).map_err(|_| err(g, "more than 2^32 vertices".into()))?;
+    // Every index is below the vertex count, so a count that fits a u32 makes the
+    // `as u32` below exact.
+    u32::try_from(out.vertices.len()).map_err(|_| err(g, "more than 2^32 vertices".into()))?;
     for prim in mesh.children().filter(Node::is_element) {
         let polygons = match prim.tag_name().name() {
             "triangles" | "polylist" | "polygons" => polygons(prim)?,
