@@ -143,13 +143,17 @@ fn mesh_path(filename: &str, search: &MeshSearch) -> Result<PathBuf, String> {
             )
         });
     }
-    let Some(dir) = &search.dir else {
-        return Err(format!(
-            "mesh '{filename}': a relative name and the URDF has no directory (standard \
-             input or a pipe)"
-        ));
+    let name = Path::new(filename.strip_prefix("file://").unwrap_or(filename));
+    let path = match &search.dir {
+        _ if name.is_absolute() => name.to_path_buf(),
+        Some(dir) => dir.join(name),
+        None => {
+            return Err(format!(
+                "mesh '{filename}': a relative name and the URDF has no directory (standard \
+                 input or a pipe)"
+            ))
+        }
     };
-    let path = dir.join(filename.strip_prefix("file://").unwrap_or(filename));
     if path.exists() {
         Ok(path)
     } else {

@@ -584,3 +584,68 @@ fn pictures_enlarge_an_invisible_surface_by_a_labelled_factor() {
         .contains("drawn ×"));
     assert!(!String::from_utf8_lossy(&out.stderr).contains("drawn ×"));
 }
+
+/// A URDF from standard input has no directory: `--package-dir` still finds its package
+/// meshes, an absolute `file://` mesh is read, and a relative name is skipped saying why.
+#[test]
+fn package_dirs_work_for_a_urdf_on_standard_input() {
+    use std::io::Write as _;
+    let dir = tmp("package-dir-stdin");
+    let input = dir.join("cases.json");
+    std::fs::write(&input, zero_cases(3, 1)).unwrap();
+    let cube = repo().join("test_data/packages/ppoe_ur_style/meshes/visual/base.dae");
+    let urdf = std::fs::read_to_string(repo().join("test_data/urdf/ur_style.urdf"))
+        .unwrap()
+        .replace(
+            "package://ppoe_ur_style/meshes/visual/forearm.dae",
+            &format!("file://{}", cube.canonicalize().unwrap().display()),
+        )
+        .replace(
+            "package://ppoe_ur_style/meshes/visual/forearm.3ds",
+            "meshes/relative.stl",
+        );
+    let mut child = Command::new(BIN)
+        .args([
+            "render",
+            "--urdf",
+            "-",
+            "--base",
+            "base_link",
+            "--tip",
+            "tool0",
+            "--input",
+            input.to_str().unwrap(),
+            "--format",
+            "html",
+            "--out",
+            dir.to_str().unwrap(),
+            "--package-dir",
+            "ppoe_ur_style=test_data/packages/ppoe_ur_style",
+        ])
+        .current_dir(repo())
+        .stdin(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(urdf.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("'meshes/relative.stl': a relative name and the URDF has no directory"),
+        "{stderr}"
+    );
+    let html = std::fs::read_to_string(dir.join("ppoe-render.html")).unwrap();
+    let data = page_data(&html);
+    // The cube and the tetrahedron from the package, and the cube's file again by its
+    // file:// name (another name: loaded as a shape of its own).
+    assert_eq!(data["shapes"].as_array().unwrap().len(), 3, "{stderr}");
+    let bodies = data["frames"][0]["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), 3, "{stderr}");
+}
