@@ -133,14 +133,25 @@ pub fn run(
                 .unwrap_or_else(|| e.context(format!("case {i}")))),
         }
     };
+    write_frames(sink, n, &make, exaggeration)
+}
+
+/// Writes the `n` frames `make` computes into `sink`, the surface exaggerated as `e` says:
+/// per picture for one file per case, with the first frame's factor for an animation.
+fn write_frames(
+    sink: &Sink<'_>,
+    n: usize,
+    make: &(dyn Fn(usize) -> anyhow::Result<Frame> + Sync),
+    e: Exaggeration,
+) -> anyhow::Result<()> {
     let (p, gif) = match sink {
         Sink::Each { dir, name, write } => {
             let mut noted = false;
             for i in 0..n {
                 let p = dir.join(name(i));
                 let mut frame = make(i)?;
-                let k = exaggerate::factor(exaggeration, &frame);
-                note_auto(exaggeration, k, &mut noted);
+                let k = exaggerate::factor(e, &frame);
+                note_auto(e, k, &mut noted);
                 exaggerate::apply(&mut frame, k);
                 write(&p, &frame)?;
                 output::print(format!("wrote {}\n", p.display()).as_bytes())?;
@@ -152,11 +163,11 @@ pub fn run(
     };
     // One factor for the whole animation, so the surface does not jump and the one
     // label of the page or GIF is true of every frame.
-    let k = match exaggeration {
+    let k = match e {
         Exaggeration::Auto => exaggerate::auto_factor(&make(0)?),
         Exaggeration::Factor(k) => k,
     };
-    note_auto(exaggeration, k, &mut false);
+    note_auto(e, k, &mut false);
     let scaled = |i: usize| -> anyhow::Result<Frame> {
         let mut frame = make(i)?;
         exaggerate::apply(&mut frame, k);
