@@ -356,21 +356,28 @@ pub fn demo(
         exaggerate::apply(&mut frame, factor);
         Ok(frame)
     };
-    let frames = picture::Frames {
-        n: n_frames,
-        make: &make,
-    };
+    println!("wrote {} (initial state)", png.display());
+    write_demo_animation(out, n_frames, &make)?;
+    println!("done in {:.1} s", start.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// The demo's page and GIF of the `n_frames` frames `make` computes, in `out`.
+fn write_demo_animation(
+    out: &Path,
+    n_frames: usize,
+    make: &(dyn Fn(usize) -> anyhow::Result<Frame> + Sync),
+) -> anyhow::Result<()> {
+    let frames = picture::Frames { n: n_frames, make };
     let survey = picture::Survey::of(&frames)?;
     let html = out.join("ppoe-seed.html");
     picture::write_html(&html, &frames, &survey)?;
     let gif = out.join("ppoe-seed.gif");
     write_gif(&gif, &frames, &survey)?;
-    println!("wrote {} (initial state)", png.display());
     println!("wrote {} ({n_frames} frames)", gif.display());
     println!(
         "wrote {} (interactive view, {n_frames} frames)",
         html.display()
     );
-    println!("done in {:.1} s", start.elapsed().as_secs_f64());
     Ok(())
 }
