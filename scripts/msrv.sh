@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/msrv.sh -- check the declared minimum Rust version (`rust-version` in Cargo.toml).
 #
-#  1. Every publishable workspace member declares the same rust-version, and no crate in its
+#  1. Every publishable workspace member declares the same rust-version (and so do ppoe-ffi
+#     and ppoe-py, each a workspace of its own), and no crate in its
 #     normal or build dependency graph (as locked in Cargo.lock) declares a higher one: a
 #     cheap check that needs no old toolchain and fails as soon as a dependency update raises
 #     the floor.
@@ -57,6 +58,12 @@ print(msrv)
 ')
 MM=$(cut -d. -f1,2 <<<"$MSRV")
 log "declared rust-version $MSRV; no locked normal/build dependency needs more"
+# The crates with a workspace of their own (the C API, the Python package) build the core
+# crate, so they cannot need less; they declare the same version.
+for manifest in ppoe-ffi/Cargo.toml ppoe-py/Cargo.toml; do
+  own=$(sed -n 's/^rust-version = "\(.*\)"$/\1/p' "$manifest")
+  [ "$own" = "$MSRV" ] || die "$manifest declares rust-version '${own}', the workspace $MSRV"
+done
 
 # --- 2. Build and test with that compiler -------------------------------------------------------
 matches() { "$@" -V 2>/dev/null | grep -q "^rustc $MM\.[0-9]"; }

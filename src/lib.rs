@@ -90,6 +90,20 @@ pub use linalg::{Mat3, Mat6, Matrix, Vec3, Vec6, Vector};
 pub use scalar::Real;
 pub use se3::Transform;
 
+/// The format of the robot tables `ppoe-build` generates for this crate (the items and
+/// constructors they call: `Chain::new`, `Joint::…`, the noise items). It is raised when
+/// that form changes; every generated Rust table starts with
+/// `const _: () = assert!(ppoe::TABLE_FORMAT == N, "…");`, `N` the format of the `ppoe`
+/// that `ppoe-build` was built with, so a table compiled against a `ppoe` of another
+/// format fails to build with a message saying so instead of compiling into something
+/// else.
+///
+/// ```compile_fail
+/// // What a table generated for another format does (here: one format ahead).
+/// const _: () = assert!(ppoe::TABLE_FORMAT == ppoe::TABLE_FORMAT + 1, "mismatched ppoe");
+/// ```
+pub const TABLE_FORMAT: u32 = 1;
+
 /// The README's code blocks, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]

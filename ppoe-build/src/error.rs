@@ -168,6 +168,40 @@ impl Error {
     }
 }
 
+/// The hint added to the errors of a URDF input that looks like xacro, or `None`. Xacro
+/// files are macro sources that `xacro` expands into a URDF; read as URDF they fail (or
+/// lack the links the macros would make), so the error says how to expand them first.
+/// `name` is the input's path or name as shown in messages; it looks like xacro when it
+/// ends in `.xacro`, or when the text declares `xmlns:xacro` or has an `<xacro:` element.
+pub fn xacro_hint(name: &str, text: &[u8]) -> Option<String> {
+    let contains = |needle: &[u8]| text.windows(needle.len()).any(|w| w == needle);
+    let by_name = name.to_ascii_lowercase().ends_with(".xacro");
+    if !(by_name || contains(b"xmlns:xacro") || contains(b"<xacro:")) {
+        return None;
+    }
+    Some(format!(
+        "the file looks like xacro, not URDF: expand it first (run: xacro {} > {})",
+        if by_name { name } else { "robot.urdf.xacro" },
+        if by_name {
+            // The last six bytes are the ASCII `.xacro`: a character boundary.
+            name.get(..name.len() - ".xacro".len()).unwrap_or(name)
+        } else {
+            "robot.urdf"
+        }
+    ))
+}
+
+impl Error {
+    /// This error with [`xacro_hint`]'s hint appended to its message when the input
+    /// `name` holding `text` looks like xacro; otherwise unchanged.
+    pub fn with_xacro_hint(mut self, name: &str, text: &[u8]) -> Self {
+        if let Some(hint) = xacro_hint(name, text) {
+            self.message = format!("{}; {hint}", self.message);
+        }
+        self
+    }
+}
+
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match (&self.file, self.position) {

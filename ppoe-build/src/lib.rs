@@ -20,13 +20,21 @@
 //!
 //! ## In a firmware's `build.rs`
 //!
+//! ppoe is not on crates.io yet: depend on one copy of it by path (your clone's path) or
+//! by git (the project's git URL, the same `rev` for both crates):
+//!
 //! ```toml
 //! [dependencies]
-//! ppoe = "0.1"
+//! ppoe = { path = "/path/to/ppoe" }          # or { git = "<the project's git URL>", rev = "…" }
 //!
 //! [build-dependencies]
-//! ppoe-build = "0.1"
+//! ppoe-build = { path = "/path/to/ppoe/ppoe-build" }
 //! ```
+//!
+//! After publication the crates.io form will do: `ppoe = "0.1"`, `ppoe-build = "0.1"`.
+//! The generated table checks at compile time that the `ppoe` it is compiled against
+//! reads its format ([`codegen::TABLE_FORMAT`] against `ppoe::TABLE_FORMAT`), so a
+//! mismatched pair fails to build with a message naming both.
 //!
 //! ```no_run
 //! // build.rs
@@ -188,6 +196,7 @@ pub mod calibration;
 pub mod chain;
 pub mod codegen;
 pub mod codegen_c;
+pub mod collada;
 mod dtd;
 pub mod error;
 pub mod json;
@@ -332,9 +341,14 @@ impl Config {
             )
             .in_file(&self.urdf));
         };
-        let urdf = Urdf::parse_bytes(bytes).map_err(|e| e.in_file(&self.urdf))?;
+        // Either step fails on a xacro file (malformed XML, or links only its macros make).
+        let hinted = |e: Error| {
+            e.with_xacro_hint(&self.urdf.to_string_lossy(), bytes)
+                .in_file(&self.urdf)
+        };
+        let urdf = Urdf::parse_bytes(bytes).map_err(hinted)?;
         urdf.chain(base, tip, self.joints.as_deref())
-            .map_err(|e| e.in_file(&self.urdf))
+            .map_err(hinted)
     }
 
     /// Reads the URDF and extracts the chain (the values a generated table holds): with a

@@ -127,6 +127,28 @@ pub struct SurfaceArgs {
     #[arg(long, value_name = "N", default_value_t = crate::meshfile::Limits::default().max_triangles,
           value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=100_000_000))]
     pub mesh_triangles: usize,
+    /// Scale the drawn surface by K about the mean tool position, so that a small
+    /// noise can be seen; the legend then says "surface drawn ×K" (1: true scale).
+    /// Default for pictures: auto (a surface under 1/40 of the arm's extent is scaled by
+    /// the smallest 1, 2 or 5 × 10ⁿ that makes it 1/10 of it; an animation keeps its first
+    /// frame's factor); for `mesh`: 1.
+    #[arg(long, value_name = "auto|K", value_parser = crate::exaggerate::parse)]
+    pub exaggerate: Option<crate::exaggerate::Exaggeration>,
+    /// Where the ROS package NAME is: a URDF mesh `package://NAME/rest` is read from
+    /// PATH/rest (repeatable, one per package; the last one of a NAME wins). Without it a
+    /// package is looked for beside the URDF (its directory and the parent).
+    #[arg(long = "package-dir", value_name = "NAME=PATH", value_parser = package_dir)]
+    pub package_dirs: Vec<(String, PathBuf)>,
+}
+
+/// `--package-dir NAME=PATH`: a non-empty package name without `/`, and a path.
+fn package_dir(s: &str) -> Result<(String, PathBuf), String> {
+    match s.split_once('=') {
+        Some((name, path)) if !name.is_empty() && !name.contains('/') && !path.is_empty() => {
+            Ok((name.to_string(), PathBuf::from(path)))
+        }
+        _ => Err("expected NAME=PATH (a package name without '/', then its directory)".into()),
+    }
 }
 
 /// `--sigma`: a positive finite number (a usage error otherwise, exit status 2).

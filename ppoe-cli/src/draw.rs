@@ -3,6 +3,7 @@
 //! second-order mean, as a [`picture::Frame`].
 
 use crate::args::{Precision, SurfaceArg, SurfaceArgs};
+use crate::exaggerate::{self, Exaggeration};
 use crate::output::println;
 use crate::picture::{self, Frame};
 use crate::seed;
@@ -137,32 +138,43 @@ pub fn ensure_dir(dir: &Path) -> anyhow::Result<()> {
 }
 
 /// The URDF visuals of `robot` (from the URDF already parsed), meshes looked up beside
-/// `urdf_path` when the URDF is a regular file, at most `surface.mesh_triangles` triangles
-/// per mesh; what is skipped or reduced is noted on stderr.
+/// `urdf_path` when the URDF is a regular file and in `surface.package_dirs`, at most
+/// `surface.mesh_triangles` triangles per mesh; what is skipped or reduced is noted on
+/// stderr (the picture is drawn without it).
 ///
 /// # Errors
-/// A `<visual>` element is malformed.
+/// A `<visual>` element is malformed, or a `--package-dir` is not a directory.
 pub fn robot_visuals(
     robot: &crate::load::Robot,
     urdf_path: &Path,
     surface: &SurfaceArgs,
 ) -> anyhow::Result<Visuals> {
     let name = &robot.source.name;
-    let mesh_dir = if robot.source.regular {
-        urdf_path.parent()
-    } else {
-        None
-    };
-    let limits = crate::meshfile::Limits {
-        max_triangles: surface.mesh_triangles,
-        ..Default::default()
+    for (package, path) in &surface.package_dirs {
+        if !path.is_dir() {
+            anyhow::bail!(
+                "--package-dir {package}={}: not a directory",
+                path.display()
+            );
+        }
+    }
+    let search = crate::visuals::MeshSearch {
+        dir: if robot.source.regular {
+            urdf_path.parent().map(Path::to_path_buf)
+        } else {
+            None
+        },
+        packages: surface.package_dirs.clone(),
+        limits: crate::meshfile::Limits {
+            max_triangles: surface.mesh_triangles,
+            ..Default::default()
+        },
     };
     let (visuals, notices) = Visuals::from_urdf_with(
         &robot.urdf,
         &robot.chain.base,
         &robot.chain.joint_names(),
-        mesh_dir,
-        &limits,
+        &search,
     )
     .with_context(|| name.clone())?;
     for n in notices {
@@ -303,7 +315,8 @@ pub fn demo(
     let mut visuals = seed::visuals()?;
     visuals.fold(&seed.folds);
 
-    let initial = state(
+    let exaggeration = surface.exaggerate.unwrap_or(Exaggeration::Auto);
+    let mut initial = state(
         format!("ppoe seed: frame 0/{n_frames}"),
         &chain,
         &seed.home_frames,
@@ -315,8 +328,12 @@ pub fn demo(
         &label,
         &visuals,
     )?;
+    // The initial frame's factor for every picture of the demo (see `frames::run`).
+    let factor = exaggerate::factor(exaggeration, &initial.frame);
+    crate::frames::note_auto(exaggeration, factor, &mut false);
+    exaggerate::apply(&mut initial.frame, factor);
     print_initial(&initial, precision);
-    println!("surface: {label}");
+    println!("surface: {}", initial.frame.sigma_label);
 
     ensure_dir(out)?;
     let png = out.join("ppoe-seed.png");
@@ -335,23 +352,32 @@ pub fn demo(
             &label,
             &visuals,
         );
-        Ok(s.with_context(|| format!("frame {step}"))?.frame)
+        let mut frame = s.with_context(|| format!("frame {step}"))?.frame;
+        exaggerate::apply(&mut frame, factor);
+        Ok(frame)
     };
-    let frames = picture::Frames {
-        n: n_frames,
-        make: &make,
-    };
+    println!("wrote {} (initial state)", png.display());
+    write_demo_animation(out, n_frames, &make)?;
+    println!("done in {:.1} s", start.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// The demo's page and GIF of the `n_frames` frames `make` computes, in `out`.
+fn write_demo_animation(
+    out: &Path,
+    n_frames: usize,
+    make: &(dyn Fn(usize) -> anyhow::Result<Frame> + Sync),
+) -> anyhow::Result<()> {
+    let frames = picture::Frames { n: n_frames, make };
     let survey = picture::Survey::of(&frames)?;
     let html = out.join("ppoe-seed.html");
     picture::write_html(&html, &frames, &survey)?;
     let gif = out.join("ppoe-seed.gif");
     write_gif(&gif, &frames, &survey)?;
-    println!("wrote {} (initial state)", png.display());
     println!("wrote {} ({n_frames} frames)", gif.display());
     println!(
         "wrote {} (interactive view, {n_frames} frames)",
         html.display()
     );
-    println!("done in {:.1} s", start.elapsed().as_secs_f64());
     Ok(())
 }

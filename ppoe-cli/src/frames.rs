@@ -5,6 +5,7 @@
 
 use crate::args::{ChainArgs, NoiseArgs, SurfaceArgs};
 use crate::draw::{self, level};
+use crate::exaggerate::{self, Exaggeration};
 use crate::names::shown;
 use crate::picture::{self, Frame};
 use crate::{cases, eval, load, noise, output};
@@ -83,13 +84,17 @@ fn prepare(
 /// # Errors
 /// Input errors (naming the file, case and joint), unwritable outputs (before any
 /// computation), and failures of a case (naming it).
+/// `default` is the command's exaggeration of the surface when `--exaggerate` is not
+/// given (automatic for pictures, none for meshes).
 pub fn run(
     chain_args: &ChainArgs,
     input: Option<&Path>,
     noise: &NoiseArgs,
     surface: &SurfaceArgs,
     sink: &Sink<'_>,
+    default: Exaggeration,
 ) -> anyhow::Result<()> {
+    let exaggeration = surface.exaggerate.unwrap_or(default);
     let (k, label) = level(surface)?;
     let grid = surface.grid as usize;
     let (robot, cases, folds) = prepare(chain_args, input, noise, sink)?;
@@ -126,11 +131,27 @@ pub fn run(
                 .unwrap_or_else(|| e.context(format!("case {i}")))),
         }
     };
+    write_frames(sink, n, &make, exaggeration)
+}
+
+/// Writes the `n` frames `make` computes into `sink`, the surface exaggerated as `e` says:
+/// per picture for one file per case, with the first frame's factor for an animation.
+fn write_frames(
+    sink: &Sink<'_>,
+    n: usize,
+    make: &(dyn Fn(usize) -> anyhow::Result<Frame> + Sync),
+    e: Exaggeration,
+) -> anyhow::Result<()> {
     let (p, gif) = match sink {
         Sink::Each { dir, name, write } => {
+            let mut noted = false;
             for i in 0..n {
                 let p = dir.join(name(i));
-                write(&p, &make(i)?)?;
+                let mut frame = make(i)?;
+                let k = exaggerate::factor(e, &frame);
+                note_auto(e, k, &mut noted);
+                exaggerate::apply(&mut frame, k);
+                write(&p, &frame)?;
                 output::print(format!("wrote {}\n", p.display()).as_bytes())?;
             }
             return Ok(());
@@ -138,7 +159,19 @@ pub fn run(
         Sink::Gif { dir, name } => (dir.join(name), true),
         Sink::Html { dir, name } => (dir.join(name), false),
     };
-    let frames = picture::Frames { n, make: &make };
+    // One factor for the whole animation, so the surface does not jump and the one
+    // label of the page or GIF is true of every frame.
+    let k = match e {
+        Exaggeration::Auto => exaggerate::auto_factor(&make(0)?),
+        Exaggeration::Factor(k) => k,
+    };
+    note_auto(e, k, &mut false);
+    let scaled = |i: usize| -> anyhow::Result<Frame> {
+        let mut frame = make(i)?;
+        exaggerate::apply(&mut frame, k);
+        Ok(frame)
+    };
+    let frames = picture::Frames { n, make: &scaled };
     let survey = picture::Survey::of(&frames)?;
     if gif {
         draw::write_gif(&p, &frames, &survey)?;
@@ -147,4 +180,17 @@ pub fn run(
     }
     output::print(format!("wrote {}\n", p.display()).as_bytes())?;
     Ok(())
+}
+
+/// Says once on stderr that an automatic factor enlarged the surface (the legend says
+/// by how much in each picture).
+pub fn note_auto(e: Exaggeration, k: f64, noted: &mut bool) {
+    if e == Exaggeration::Auto && k != 1.0 && !*noted {
+        *noted = true;
+        eprintln!(
+            "note: the surface is too small to see at the picture's scale: drawn ×{} about \
+             the tool, as the legend says (--exaggerate 1: true scale)",
+            exaggerate::shown(k)
+        );
+    }
 }

@@ -159,8 +159,17 @@ pub fn in_input(name: &str, e: &ppoe_build::Error) -> anyhow::Error {
 /// Unreadable or malformed input, naming it (and the line and column).
 pub fn urdf(path: &Path) -> anyhow::Result<(Input, Urdf)> {
     let source = read(path, "URDF file")?;
-    let urdf = Urdf::parse_bytes(&source.bytes).map_err(|e| in_input(&source.name, &e))?;
+    let urdf = Urdf::parse_bytes(&source.bytes).map_err(|e| in_input(&source.name, &e));
+    let urdf = urdf.map_err(|e| xacro_hinted(&source, e))?;
     Ok((source, urdf))
+}
+
+/// `e` with ppoe-build's hint to run xacro first, when the URDF input looks like xacro.
+fn xacro_hinted(source: &Input, e: anyhow::Error) -> anyhow::Error {
+    match ppoe_build::error::xacro_hint(&source.name, &source.bytes) {
+        Some(hint) => anyhow::anyhow!("{e}; {hint}"),
+        None => e,
+    }
 }
 
 /// Reads the URDF once and extracts the chain; unknown link and joint names are reported
@@ -171,6 +180,19 @@ pub fn urdf(path: &Path) -> anyhow::Result<(Input, Urdf)> {
 /// moving joint, ...), naming the file.
 pub fn robot(args: &ChainArgs) -> anyhow::Result<Robot> {
     let (source, urdf) = urdf(&args.urdf)?;
+    // A xacro file that parses as XML still lacks the links its macros would make.
+    match chain_of(&source, &urdf, args) {
+        Ok(chain) => Ok(Robot {
+            source,
+            urdf,
+            chain,
+        }),
+        Err(e) => Err(xacro_hinted(&source, e)),
+    }
+}
+
+/// The chain `args` names in the parsed URDF, with the nearest names for unknown ones.
+fn chain_of(source: &Input, urdf: &Urdf, args: &ChainArgs) -> anyhow::Result<RobotChain> {
     for (what, name) in [("base", &args.base), ("tip", &args.tip)] {
         if urdf.link(name).is_none() {
             bail!(
@@ -199,12 +221,6 @@ pub fn robot(args: &ChainArgs) -> anyhow::Result<Robot> {
             );
         }
     }
-    let chain = urdf
-        .chain(&args.base, &args.tip, args.joints.as_deref())
-        .map_err(|e| in_input(&source.name, &e))?;
-    Ok(Robot {
-        source,
-        urdf,
-        chain,
-    })
+    urdf.chain(&args.base, &args.tip, args.joints.as_deref())
+        .map_err(|e| in_input(&source.name, &e))
 }

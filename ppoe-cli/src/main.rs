@@ -21,6 +21,7 @@ mod cases;
 mod commands;
 mod draw;
 mod eval;
+mod exaggerate;
 mod fit;
 mod frames;
 mod input;

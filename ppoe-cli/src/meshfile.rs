@@ -127,6 +127,20 @@ pub fn parse(
         Format::Stl => stl(bytes)?,
         Format::Obj => obj(bytes)?,
     };
+    from_triangles(vertices, triangles, scale, limits)
+}
+
+/// A mesh read by another parser (COLLADA), scaled per axis and bounded as [`parse`]
+/// does: every triangle index must be below `vertices.len()`.
+///
+/// # Errors
+/// No proper triangles, or a vertex that is not finite after scaling.
+pub fn from_triangles(
+    vertices: Vec<[f64; 3]>,
+    triangles: Vec<[u32; 3]>,
+    scale: [f64; 3],
+    limits: &Limits,
+) -> Result<Mesh, String> {
     let vertices: Vec<[f64; 3]> = vertices
         .into_iter()
         .map(|p| [0, 1, 2].map(|k| p[k] * scale[k]))

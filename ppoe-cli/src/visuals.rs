@@ -1,7 +1,8 @@
 //! The robot's visual geometry from a URDF's `<visual>` elements, for the pictures:
 //! cylinders, boxes and spheres with their `<origin>` and material colours, and meshes
-//! (STL, OBJ) loaded from the URDF's directory (`package://` or relative paths); a mesh
-//! that cannot be found or read (or a COLLADA `.dae`) is skipped with a notice.
+//! (STL, OBJ, COLLADA `.dae`) loaded from the URDF's directory or the `--package-dir`
+//! of their `package://` package; a mesh that cannot be found, is of another format or
+//! cannot be read is skipped with a notice saying which and why.
 //! The `<visual>`s are read by ppoe-build with the rest of the URDF (`Link::visuals`, the
 //! link/joint tree); this file turns them into shapes and places them, and reads no XML.
 //!
@@ -69,34 +70,113 @@ fn visual_rgb(v: &Visual, named: &HashMap<&str, [u8; 3]>) -> Option<[u8; 3]> {
     colour(m).or_else(|| m.name.as_deref().and_then(|n| named.get(n).copied()))
 }
 
-/// Where a mesh file named in the URDF may be: `package://pkg/rest` is looked up as `rest`
-/// and `pkg/rest` in the URDF's directory and its parent; other names relative to the
-/// URDF's directory.
-fn mesh_candidates(filename: &str, dir: &Path) -> Vec<PathBuf> {
-    if let Some(rest) = filename.strip_prefix("package://") {
-        let after_pkg = rest.split_once('/').map_or(rest, |(_, r)| r);
-        let parent = dir.parent().unwrap_or(dir);
-        return vec![
-            dir.join(after_pkg),
-            parent.join(after_pkg),
-            dir.join(rest),
-            parent.join(rest),
-        ];
-    }
-    let name = filename.strip_prefix("file://").unwrap_or(filename);
-    vec![dir.join(name)]
+/// Where mesh files are looked for: the URDF's directory (none for standard input or a
+/// pipe), the package directories of `--package-dir NAME=PATH`, and the bounds on a file.
+#[derive(Clone, Debug, Default)]
+pub struct MeshSearch {
+    /// The URDF's directory: relative names are resolved there.
+    pub dir: Option<PathBuf>,
+    /// `package://NAME/rest` is `PATH/rest` for each `(NAME, PATH)`.
+    pub packages: Vec<(String, PathBuf)>,
+    /// The bounds on each mesh file.
+    pub limits: Limits,
 }
 
-/// Loads an STL or OBJ mesh, scaled, within `limits`; with the notice of its reduction,
-/// if it was reduced.
+/// The mesh formats read, by file extension (case-insensitive).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum MeshFormat {
+    File(meshfile::Format),
+    Collada,
+}
+
+fn mesh_format(filename: &str) -> Result<MeshFormat, String> {
+    let path = Path::new(filename);
+    if let Some(f) = meshfile::Format::of(path) {
+        return Ok(MeshFormat::File(f));
+    }
+    match path.extension().and_then(|e| e.to_str()) {
+        Some(e) if e.eq_ignore_ascii_case("dae") => Ok(MeshFormat::Collada),
+        e => Err(format!(
+            "mesh '{filename}': unsupported format{} (STL, OBJ and COLLADA .dae are read)",
+            e.map_or(String::from(" (no extension)"), |e| format!(" '.{e}'"))
+        )),
+    }
+}
+
+/// The file a mesh name means. `package://NAME/rest` is `PATH/rest` when `--package-dir
+/// NAME=PATH` names the package; otherwise it is looked up as `rest` and `NAME/rest` in
+/// the URDF's directory and its parent (a package beside its URDF); other names are
+/// relative to the URDF's directory.
+fn mesh_path(filename: &str, search: &MeshSearch) -> Result<PathBuf, String> {
+    let not_found = |looked: &Path| {
+        format!(
+            "mesh '{filename}' not found (looked for {})",
+            looked.display()
+        )
+    };
+    if let Some(rest) = filename.strip_prefix("package://") {
+        let (package, after_pkg) = rest.split_once('/').unwrap_or((rest, ""));
+        if let Some((_, root)) = search.packages.iter().rev().find(|(n, _)| n == package) {
+            let path = root.join(after_pkg);
+            // Any existing path: a device, FIFO or directory is then refused by name.
+            return if path.exists() {
+                Ok(path)
+            } else {
+                Err(not_found(&path))
+            };
+        }
+        let found = search.dir.as_deref().and_then(|dir| {
+            let parent = dir.parent().unwrap_or(dir);
+            [
+                dir.join(after_pkg),
+                parent.join(after_pkg),
+                dir.join(rest),
+                parent.join(rest),
+            ]
+            .into_iter()
+            .find(|p| p.exists())
+        });
+        return found.ok_or_else(|| {
+            format!(
+                "mesh '{filename}': unknown package '{package}' (give --package-dir \
+                 {package}=PATH)"
+            )
+        });
+    }
+    let name = Path::new(filename.strip_prefix("file://").unwrap_or(filename));
+    let path = match &search.dir {
+        _ if name.is_absolute() => name.to_path_buf(),
+        Some(dir) => dir.join(name),
+        None => {
+            return Err(format!(
+                "mesh '{filename}': a relative name and the URDF has no directory (standard \
+                 input or a pipe)"
+            ))
+        }
+    };
+    if path.exists() {
+        Ok(path)
+    } else {
+        Err(not_found(&path))
+    }
+}
+
+/// Loads an STL, OBJ or COLLADA mesh, scaled, within `limits`; with the notice of its
+/// reduction, if it was reduced.
 fn load_mesh(
     path: &Path,
+    format: MeshFormat,
     scale: [f64; 3],
     limits: &Limits,
 ) -> Result<(Shape, Option<String>), String> {
-    let format = meshfile::Format::of(path).ok_or("only STL and OBJ meshes are read")?;
     let bytes = meshfile::read(path, limits)?;
-    let mesh = meshfile::parse(&bytes, format, scale, limits)?;
+    let mesh = match format {
+        MeshFormat::File(format) => meshfile::parse(&bytes, format, scale, limits)?,
+        MeshFormat::Collada => {
+            let dae = ppoe_build::collada::parse(&bytes).map_err(|e| e.to_string())?;
+            meshfile::from_triangles(dae.vertices, dae.triangles, scale, limits)?
+        }
+    };
     let shape = Shape {
         vertices: mesh.vertices,
         faces: mesh.triangles.iter().map(|t| t.to_vec()).collect(),
@@ -107,29 +187,18 @@ fn load_mesh(
 
 /// The shape of a geometry (with a notice if a mesh was reduced), or a notice why it is
 /// skipped.
-fn shape(
-    geometry: &Geometry,
-    dir: Option<&Path>,
-    limits: &Limits,
-) -> Result<(Shape, Option<String>), String> {
+fn shape(geometry: &Geometry, search: &MeshSearch) -> Result<(Shape, Option<String>), String> {
     Ok((
         match geometry {
             Geometry::Cylinder { radius, length } => Shape::cylinder(*radius, *length),
             Geometry::Sphere { radius } => Shape::sphere(*radius),
             Geometry::Box { size } => Shape::cuboid(*size),
             Geometry::Mesh { filename, scale } => {
-                let Some(dir) = dir else {
-                    return Err(format!("mesh '{filename}': no directory to look in"));
-                };
-                let Some(path) = mesh_candidates(filename, dir)
-                    .into_iter()
-                    // Any existing path: a device, FIFO or directory is then refused by name.
-                    .find(|p| p.exists())
-                else {
-                    return Err(format!("mesh '{filename}' not found"));
-                };
+                let format = mesh_format(filename)?;
+                let path = mesh_path(filename, search)?;
                 let named = |e: String| format!("mesh '{}': {e}", path.display());
-                let (shape, reduced) = load_mesh(&path, *scale, limits).map_err(named)?;
+                let loaded = load_mesh(&path, format, *scale, &search.limits);
+                let (shape, reduced) = loaded.map_err(named)?;
                 return Ok((shape, reduced.map(named)));
             }
             Geometry::Empty => return Err("an empty <geometry>".into()),
@@ -167,11 +236,15 @@ impl Visuals {
         joints: &[&str],
         dir: Option<&Path>,
     ) -> anyhow::Result<(Visuals, Vec<String>)> {
-        Self::from_urdf_with(urdf, base, joints, dir, &Limits::default())
+        let search = MeshSearch {
+            dir: dir.map(Path::to_path_buf),
+            ..MeshSearch::default()
+        };
+        Self::from_urdf_with(urdf, base, joints, &search)
     }
 
-    /// [`Visuals::from_urdf`] with the bounds on mesh files given (a mesh beyond them is
-    /// skipped or reduced, with a notice).
+    /// [`Visuals::from_urdf`] with meshes looked up as `search` says, within its bounds
+    /// (a mesh beyond them is skipped or reduced, with a notice).
     ///
     /// # Errors
     /// As [`Visuals::from_urdf`].
@@ -179,8 +252,7 @@ impl Visuals {
         urdf: &Urdf,
         base: &str,
         joints: &[&str],
-        dir: Option<&Path>,
-        limits: &Limits,
+        search: &MeshSearch,
     ) -> anyhow::Result<(Visuals, Vec<String>)> {
         let named = materials(urdf)?;
         let tree = urdf.tree();
@@ -202,7 +274,7 @@ impl Visuals {
                 let key = format!("{g:?}");
                 let shape = match shapes.get(&key) {
                     Some(s) => s.clone(),
-                    None => match shape(g, dir, limits) {
+                    None => match shape(g, search) {
                         Ok((s, reduced)) => {
                             if let Some(why) = reduced {
                                 notices.push(format!("link '{name}': {why}"));
@@ -317,6 +389,67 @@ mod tests {
             for (a, b) in flange.pose[k][..3].iter().zip(&pose[k][..3]) {
                 assert!((a - b).abs() < 1e-12);
             }
+        }
+    }
+
+    fn bounds(shape: &Shape) -> [[f64; 2]; 3] {
+        let mut b = [[f64::INFINITY, f64::NEG_INFINITY]; 3];
+        for f in &shape.faces {
+            for &i in f {
+                for (k, x) in shape.vertices[i as usize].iter().enumerate() {
+                    b[k] = [b[k][0].min(*x), b[k][1].max(*x)];
+                }
+            }
+        }
+        b
+    }
+
+    /// The UR-style test robot's COLLADA meshes from its `--package-dir`: the cube (12
+    /// triangles) and the millimetre, Y-up tetrahedron (4 triangles, scaled by the URDF's
+    /// `scale` here) have the bounding boxes their files' comments derive by hand; each
+    /// other visual is skipped with its reason.
+    #[test]
+    fn collada_meshes_from_a_package_dir() {
+        let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let text = std::fs::read_to_string(repo.join("test_data/urdf/ur_style.urdf")).unwrap();
+        let text = text.replace("shoulder_mm.dae\"/>", "shoulder_mm.dae\" scale=\"2 1 1\"/>");
+        let urdf = Urdf::parse(&text).unwrap();
+        let joints = ["shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint"];
+        let search = MeshSearch {
+            dir: Some(repo.join("test_data/urdf")),
+            packages: vec![(
+                "ppoe_ur_style".into(),
+                repo.join("test_data/packages/ppoe_ur_style"),
+            )],
+            ..MeshSearch::default()
+        };
+        let (v, notices) = Visuals::from_urdf_with(&urdf, "base_link", &joints, &search).unwrap();
+        assert_eq!(v.parts.len(), 2, "{notices:?}");
+        let cube = &v.parts[0].shape;
+        assert_eq!(cube.faces.len(), 12);
+        let want = [[-0.05, 0.05], [-0.05, 0.05], [0.0, 0.1]];
+        assert_eq!(bounds(cube), want);
+        let tetra = &v.parts[1].shape;
+        assert_eq!(tetra.faces.len(), 4);
+        let b = bounds(tetra);
+        let want = [[0.0, 0.2], [-0.1, 0.0], [0.0, 0.1]];
+        for k in 0..3 {
+            for e in 0..2 {
+                assert!((b[k][e] - want[k][e]).abs() < 1e-15, "{b:?}");
+            }
+        }
+        // The tetrahedron's link is one joint down, at its visual's origin 0.1 m up.
+        assert_eq!(v.parts[1].prefix, 1);
+        assert_eq!(translation(&v.parts[1].home), [0.0, 0.0, 0.2]);
+        let expected = [
+            "unknown package 'ppoe_missing_description' (give --package-dir",
+            "forearm.dae' not found (looked for ",
+            "unsupported format '.3ds'",
+            "broken.dae': malformed XML",
+        ];
+        assert_eq!(notices.len(), expected.len(), "{notices:?}");
+        for (n, e) in notices.iter().zip(expected) {
+            assert!(n.contains(e) && n.ends_with(", skipped"), "{n}");
         }
     }
 }

@@ -246,3 +246,57 @@ fn noise_and_another_input_on_standard_input_is_a_clear_error() {
         );
     }
 }
+
+/// A xacro file given as `--urdf` (issue #30): the one error line ends with the command
+/// that expands it, by file name, by content, and from standard input.
+#[test]
+fn a_xacro_input_gets_the_hint_to_expand_it() {
+    let dir = fresh_dir("xacro-input");
+    let text = "<robot name=\"arm\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\">\
+                <xacro:include filename=\"arm.xacro\"/></robot>";
+    let file = dir.join("arm.urdf.xacro");
+    std::fs::write(&file, text).unwrap();
+    let f = file.to_str().unwrap();
+    let args = [
+        "table",
+        "--urdf",
+        f,
+        "--base",
+        "base_link",
+        "--tip",
+        "tool0",
+    ];
+    let e = one_line_error(&run(&args), 1);
+    let expanded = dir.join("arm.urdf");
+    assert!(e.contains("base link 'base_link' does not exist"), "{e}");
+    assert!(
+        e.ends_with(&format!("(run: xacro {f} > {})", expanded.display())),
+        "{e}"
+    );
+    let args = [
+        "table",
+        "--urdf",
+        "-",
+        "--base",
+        "base_link",
+        "--tip",
+        "tool0",
+    ];
+    let e = one_line_error(&run_bytes(&args, text.as_bytes()), 1);
+    assert!(
+        e.ends_with("(run: xacro robot.urdf.xacro > robot.urdf)"),
+        "{e}"
+    );
+    // An ordinary unknown link: no hint.
+    let seed = urdf("seed.urdf");
+    let args = [
+        "table",
+        "--urdf",
+        seed.to_str().unwrap(),
+        "--base",
+        "nope",
+        "--tip",
+        "tcp",
+    ];
+    assert!(!one_line_error(&run(&args), 1).contains("xacro"));
+}

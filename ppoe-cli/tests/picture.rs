@@ -314,3 +314,338 @@ fn hostile_mesh_files_are_skipped_by_name() {
         "{stderr}"
     );
 }
+
+/// `render --format html` of the UR-style test robot: its COLLADA meshes (a cube of 12
+/// triangles, a millimetre Y-up tetrahedron of 4) are in the page, with the bounding
+/// boxes their files' comments derive by hand, when `--package-dir` says where their
+/// package is; without it they are skipped as an unknown package and the page is
+/// still written.
+#[test]
+fn collada_meshes_are_drawn_from_their_package_dir() {
+    let dir = tmp("collada");
+    let input = dir.join("cases.json");
+    std::fs::write(&input, zero_cases(3, 1)).unwrap();
+    let (i, d) = (input.to_str().unwrap(), dir.to_str().unwrap());
+    let args = |extra: &[&'static str]| {
+        let mut a = vec![
+            "render",
+            "--urdf",
+            "test_data/urdf/ur_style.urdf",
+            "--base",
+            "base_link",
+            "--tip",
+            "tool0",
+            "--input",
+            i,
+            "--format",
+            "html",
+            "--out",
+            d,
+        ];
+        a.extend_from_slice(extra);
+        a
+    };
+    let package = [
+        "--package-dir",
+        "ppoe_ur_style=test_data/packages/ppoe_ur_style",
+    ];
+    let out = run(&args(&package));
+    let html = std::fs::read_to_string(dir.join("ppoe-render.html")).unwrap();
+    let shapes = page_data(&html)["shapes"].as_array().unwrap().clone();
+    let mut found: Vec<(usize, [[f64; 2]; 3])> = shapes
+        .iter()
+        .map(|s| {
+            let mut b = [[f64::INFINITY, f64::NEG_INFINITY]; 3];
+            // Flat x, y, z triples, rounded to 1e-7 m (exact for these decimals).
+            let v = s["v"].as_array().unwrap();
+            for (n, x) in v.iter().enumerate() {
+                let (k, x) = (n % 3, x.as_f64().unwrap());
+                b[k] = [b[k][0].min(x), b[k][1].max(x)];
+            }
+            (s["f"].as_array().unwrap().len(), b)
+        })
+        .collect();
+    found.sort_by_key(|(n, _)| *n);
+    let cube = [[-0.05, 0.05], [-0.05, 0.05], [0.0, 0.1]];
+    let tetra = [[0.0, 0.1], [-0.1, 0.0], [0.0, 0.1]];
+    assert_eq!(found, vec![(4, tetra), (12, cube)]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("unknown package 'ppoe_missing_description'"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("base.dae"), "{stderr}");
+    // Without the package's directory: skipped by name, the page written all the same.
+    std::fs::remove_file(dir.join("ppoe-render.html")).unwrap();
+    let stderr = String::from_utf8_lossy(&run(&args(&[])).stderr).into_owned();
+    for mesh in ["base.dae", "shoulder_mm.dae"] {
+        assert!(
+            stderr.lines().any(|l| l.contains(mesh)
+                && l.contains("unknown package 'ppoe_ur_style' (give --package-dir")),
+            "{stderr}"
+        );
+    }
+    let html = std::fs::read_to_string(dir.join("ppoe-render.html")).unwrap();
+    assert!(page_data(&html)["shapes"].as_array().unwrap().is_empty());
+}
+
+/// A `--package-dir` without `=` is a usage error; one that is not a directory an input
+/// error naming it.
+#[test]
+fn bad_package_dirs_are_refused() {
+    let dir = tmp("package-dir");
+    let input = dir.join("cases.json");
+    std::fs::write(&input, zero_cases(3, 1)).unwrap();
+    let (i, d) = (input.to_str().unwrap(), dir.to_str().unwrap());
+    for (value, code, expected) in [
+        ("ppoe_ur_style", 2, "expected NAME=PATH"),
+        ("=x", 2, "expected NAME=PATH"),
+        (
+            "ppoe_ur_style=test_data/urdf/ur_style.urdf",
+            1,
+            "not a directory",
+        ),
+    ] {
+        let out = Command::new(BIN)
+            .args([
+                "render",
+                "--urdf",
+                "test_data/urdf/ur_style.urdf",
+                "--base",
+                "base_link",
+                "--tip",
+                "tool0",
+                "--input",
+                i,
+                "--out",
+                d,
+                "--package-dir",
+                value,
+            ])
+            .current_dir(repo())
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(code), "{value}: {stderr}");
+        assert!(stderr.contains(expected), "{value}: {stderr}");
+    }
+}
+
+/// The vertices of an OBJ written by `ppoe mesh`.
+fn obj_vertices(path: &Path) -> Vec<[f64; 3]> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let v: Vec<f64> = l.split(' ').map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect()
+}
+
+/// Real noise (3 mrad per joint, rotation only) on the UR-style arm, whose 1σ surface is
+/// a few millimetres across.
+fn small_noise_cases() -> String {
+    let mut cov = vec![vec![0.0; 6]; 6];
+    for (k, row) in cov.iter_mut().enumerate().take(3) {
+        row[k] = 9e-6;
+    }
+    json!({"cases": [{"thetas": [0.0, 0.5, 0.5], "covs": vec![cov; 3]}]}).to_string()
+}
+
+/// `--exaggerate` (issue #30, point 5): `mesh --exaggerate 1` is the mesh of the existing
+/// output byte for byte; with 7 every surface vertex is 7 times as far from the tool
+/// (the skeleton and the second-order mean unchanged), and the header says ×7.
+#[test]
+fn exaggerate_scales_the_surface_about_the_tool_and_says_so() {
+    let dir = tmp("exaggerate-mesh");
+    let input = dir.join("cases.json");
+    std::fs::write(&input, small_noise_cases()).unwrap();
+    let (i, d) = (input.to_str().unwrap(), dir.to_str().unwrap());
+    let mesh = |extra: &[&str], name: &str| {
+        let mut a = vec![
+            "mesh",
+            "--urdf",
+            "test_data/urdf/ur_style.urdf",
+            "--base",
+            "base_link",
+            "--tip",
+            "tool0",
+            "--input",
+            i,
+            "--grid",
+            "5",
+            "--out",
+            d,
+        ];
+        a.extend_from_slice(extra);
+        run(&a);
+        let to = dir.join(name);
+        std::fs::rename(dir.join("ppoe-mesh-0.obj"), &to).unwrap();
+        to
+    };
+    let plain = mesh(&[], "plain.obj");
+    let one = mesh(&["--exaggerate", "1"], "one.obj");
+    let seven = mesh(&["--exaggerate", "7"], "seven.obj");
+    assert_eq!(std::fs::read(&plain).unwrap(), std::fs::read(&one).unwrap());
+    let (p, s) = (obj_vertices(&plain), obj_vertices(&seven));
+    assert_eq!(p.len(), 25 + 5 + 1); // the grid, base + 3 joints + tool, the mean
+    assert_eq!(p[25..], s[25..]);
+    let tool = p[29];
+    let mut largest = 0.0f64;
+    for (a, b) in p[..25].iter().zip(&s[..25]) {
+        for k in 0..3 {
+            let (da, db) = (a[k] - tool[k], b[k] - tool[k]);
+            assert!((db - 7.0 * da).abs() <= 1e-12, "{a:?} {b:?}");
+            largest = largest.max(da.abs());
+        }
+    }
+    assert!(largest > 1e-4, "the surface is not a point: {largest}");
+    let header = std::fs::read_to_string(&seven).unwrap();
+    assert!(
+        header.contains("surface drawn ×7 about the tool (not to scale)"),
+        "{header}"
+    );
+    assert!(!std::fs::read_to_string(&plain).unwrap().contains("drawn ×"));
+}
+
+/// Pictures enlarge a surface too small to see by default, saying so in the legend (the
+/// HTML view's label) and on stderr; `--exaggerate 1` draws it at true scale, and a
+/// visible surface (the seed's) is not enlarged.
+#[test]
+fn pictures_enlarge_an_invisible_surface_by_a_labelled_factor() {
+    let dir = tmp("exaggerate-html");
+    let input = dir.join("cases.json");
+    std::fs::write(&input, small_noise_cases()).unwrap();
+    let (i, d) = (input.to_str().unwrap(), dir.to_str().unwrap());
+    let html = |extra: &[&str]| {
+        let mut a = vec![
+            "render",
+            "--urdf",
+            "test_data/urdf/ur_style.urdf",
+            "--base",
+            "base_link",
+            "--tip",
+            "tool0",
+            "--input",
+            i,
+            "--format",
+            "html",
+            "--out",
+            d,
+        ];
+        a.extend_from_slice(extra);
+        let out = run(&a);
+        let page = std::fs::read_to_string(dir.join("ppoe-render.html")).unwrap();
+        let label = page_data(&page)["label"].as_str().unwrap().to_string();
+        (label, String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (label, stderr) = html(&[]);
+    // The arm spans about 0.6 m; 3 mrad at ≈0.75 m from the axes gives a surface of a
+    // few millimetres: under 1/40 of the arm, enlarged by a round factor of 10 or more.
+    let factor: f64 = label
+        .split("surface drawn ×")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|k| k.parse().ok())
+        .unwrap_or_else(|| panic!("{label}"));
+    assert!(factor >= 10.0, "{label}");
+    assert!(
+        stderr.contains(&format!("drawn ×{factor} about the tool")),
+        "{stderr}"
+    );
+    let (label, stderr) = html(&["--exaggerate", "1"]);
+    assert!(
+        !label.contains("drawn ×") && !stderr.contains("drawn ×"),
+        "{label}"
+    );
+    let seed = dir.join("seed.json");
+    std::fs::write(&seed, zero_cases(6, 1)).unwrap();
+    let out = run(&[
+        "render",
+        "--urdf",
+        "test_data/urdf/seed.urdf",
+        "--base",
+        "linkmount",
+        "--tip",
+        "tcp",
+        "--input",
+        seed.to_str().unwrap(),
+        "--format",
+        "html",
+        "--out",
+        d,
+    ]);
+    let page = std::fs::read_to_string(dir.join("ppoe-render.html")).unwrap();
+    assert!(!page_data(&page)["label"]
+        .as_str()
+        .unwrap()
+        .contains("drawn ×"));
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("drawn ×"));
+}
+
+/// A URDF from standard input has no directory: `--package-dir` still finds its package
+/// meshes, an absolute `file://` mesh is read, and a relative name is skipped saying why.
+#[test]
+fn package_dirs_work_for_a_urdf_on_standard_input() {
+    use std::io::Write as _;
+    let dir = tmp("package-dir-stdin");
+    let input = dir.join("cases.json");
+    std::fs::write(&input, zero_cases(3, 1)).unwrap();
+    let cube = repo().join("test_data/packages/ppoe_ur_style/meshes/visual/base.dae");
+    let urdf = std::fs::read_to_string(repo().join("test_data/urdf/ur_style.urdf"))
+        .unwrap()
+        .replace(
+            "package://ppoe_ur_style/meshes/visual/forearm.dae",
+            &format!("file://{}", cube.canonicalize().unwrap().display()),
+        )
+        .replace(
+            "package://ppoe_ur_style/meshes/visual/forearm.3ds",
+            "meshes/relative.stl",
+        );
+    let mut child = Command::new(BIN)
+        .args([
+            "render",
+            "--urdf",
+            "-",
+            "--base",
+            "base_link",
+            "--tip",
+            "tool0",
+            "--input",
+            input.to_str().unwrap(),
+            "--format",
+            "html",
+            "--out",
+            dir.to_str().unwrap(),
+            "--package-dir",
+            "ppoe_ur_style=test_data/packages/ppoe_ur_style",
+        ])
+        .current_dir(repo())
+        .stdin(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(urdf.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("'meshes/relative.stl': a relative name and the URDF has no directory"),
+        "{stderr}"
+    );
+    let html = std::fs::read_to_string(dir.join("ppoe-render.html")).unwrap();
+    let data = page_data(&html);
+    // The cube and the tetrahedron from the package, and the cube's file again by its
+    // file:// name (another name: loaded as a shape of its own).
+    assert_eq!(data["shapes"].as_array().unwrap().len(), 3, "{stderr}");
+    let bodies = data["frames"][0]["bodies"].as_array().unwrap();
+    assert_eq!(bodies.len(), 3, "{stderr}");
+}

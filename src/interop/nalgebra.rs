@@ -1,6 +1,6 @@
 //! nalgebra conversions (feature `nalgebra`, built with nalgebra's `libm` feature and
-//! without its default `std`). nalgebra 0.34 needs Rust 1.87, above ppoe's own minimum
-//! (1.82), which holds without this feature.
+//! without its default `std`). nalgebra 0.34 needs Rust 1.87, below ppoe's own minimum
+//! (`rust-version`, 1.95), so the feature raises no requirement.
 //!
 //! | ppoe | nalgebra | direction |
 //! |---|---|---|

@@ -48,5 +48,12 @@ pub fn run(a: &MeshArgs) -> anyhow::Result<()> {
         name: &name,
         write: &write,
     };
-    frames::run(&a.chain, a.input.as_deref(), &a.noise, &a.surface, &sink)
+    frames::run(
+        &a.chain,
+        a.input.as_deref(),
+        &a.noise,
+        &a.surface,
+        &sink,
+        crate::exaggerate::Exaggeration::Factor(1.0),
+    )
 }

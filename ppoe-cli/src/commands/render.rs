@@ -66,5 +66,12 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<()> {
             write: &write,
         },
     };
-    frames::run(&a.chain, a.input.as_deref(), &a.noise, &a.surface, &sink)
+    frames::run(
+        &a.chain,
+        a.input.as_deref(),
+        &a.noise,
+        &a.surface,
+        &sink,
+        crate::exaggerate::Exaggeration::Auto,
+    )
 }
