@@ -103,3 +103,15 @@ def test_native_module_checks_shapes_itself():
         _ppoe.invert(np.eye(3), np.eye(6))
     with pytest.raises(ValueError, match="C-contiguous"):
         _ppoe.invert(np.eye(4), np.asfortranarray(np.arange(36.0).reshape(6, 6)))
+
+
+def test_mimic_joints_are_refused_not_ignored():
+    # gripper.urdf's path base -> left_tip has two mimic joints; the Python package does not
+    # expand them, so it must refuse the chain rather than treat them as independent.
+    from conftest import ROOT
+    import os
+
+    with open(os.path.join(ROOT, "test_data", "urdf", "gripper.urdf")) as f:
+        urdf = f.read()
+    with pytest.raises(ppoe.PpoeError, match="mimic joints"):
+        ppoe.ProbabilisticRobotKinematics(urdf, "left_tip", "base", None)
