@@ -411,7 +411,17 @@ mod tests {
     #[test]
     fn collada_meshes_from_a_package_dir() {
         let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-        let text = std::fs::read_to_string(repo.join("test_data/urdf/ur_style.urdf")).unwrap();
+        let urdf_path = repo.join("test_data/urdf/ur_style.urdf");
+        if !urdf_path.exists() {
+            // The published package has no repository test data (scripts/publish-check.sh
+            // tests the unpacked crate); the repository's `cargo test` runs this test.
+            eprintln!(
+                "skipped: {} is not here (not a repository checkout)",
+                urdf_path.display()
+            );
+            return;
+        }
+        let text = std::fs::read_to_string(&urdf_path).unwrap();
         let text = text.replace("shoulder_mm.dae\"/>", "shoulder_mm.dae\" scale=\"2 1 1\"/>");
         let urdf = Urdf::parse(&text).unwrap();
         let joints = ["shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint"];
