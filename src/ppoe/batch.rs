@@ -17,9 +17,10 @@
 //! inputs a configuration's result does not depend on its position in the batch, on the
 //! batch's length or on W. It equals [`ChainView::ppoe`] exactly where that call runs one
 //! lane (Cortex-M, RISC-V without vector units); on SIMD hosts the single call sums its
-//! W joint lanes separately, and the two differ by a few ε of ‖Σ‖ (the unit tests below
-//! check both statements). A last group of fewer than W configurations fills its empty
-//! lanes with its last configuration, whose duplicates are computed and discarded.
+//! W joint lanes separately, and the two differ by a few ε of ‖Σ‖ (the unit tests in
+//! `batch_tests.rs` beside this file check both statements). A last group of fewer than
+//! W configurations fills its empty lanes with its last configuration, whose duplicates
+//! are computed and discarded.
 //!
 //! Joints whose covariance is exactly zero in every lane are skipped, as in the single
 //! call; a zero covariance in some lanes only is transported there and adds exactly zero
@@ -372,11 +373,6 @@ fn add_rank1_lower<T: Real, const W: usize>(u: &[Pack<T, W>; 6], sigma2: T, acc:
     }
 }
 
-/// `rows × n`, or `None` on overflow.
-fn rows_times(rows: usize, n: usize) -> Option<usize> {
-    rows.checked_mul(n)
-}
-
 impl<T: Real> ChainView<'_, T> {
     /// The PPOE of many configurations, unchecked: `out[k]` is [`ChainView::ppoe`] of row k
     /// of `thetas` (row-major, `out.len()` rows of one value per joint) with the joint
@@ -420,7 +416,7 @@ impl<T: Real> ChainView<'_, T> {
         out: &mut [UncertainPose<T>],
     ) -> Result<(), Error> {
         let n = self.joints.len();
-        if covs.len() != n || rows_times(out.len(), n) != Some(thetas.len()) {
+        if covs.len() != n || out.len().checked_mul(n) != Some(thetas.len()) {
             return Err(Error::LengthMismatch);
         }
         dense(self, thetas, &Shared(covs), convention, out);
@@ -444,7 +440,7 @@ impl<T: Real> ChainView<'_, T> {
         out: &mut [UncertainPose<T>],
     ) -> Result<(), Error> {
         let n = self.joints.len();
-        let rows = rows_times(out.len(), n);
+        let rows = out.len().checked_mul(n);
         if rows != Some(thetas.len()) || rows != Some(covs.len()) {
             return Err(Error::LengthMismatch);
         }
@@ -516,7 +512,7 @@ impl<T: Real> ChainView<'_, T> {
         out: &mut [UncertainPose<T>],
     ) -> Result<(), Error> {
         let n = self.joints.len();
-        if sigma2.len() != n || rows_times(out.len(), n) != Some(thetas.len()) {
+        if sigma2.len() != n || out.len().checked_mul(n) != Some(thetas.len()) {
             return Err(Error::LengthMismatch);
         }
         rank1(self, thetas, sigma2, convention, out);
@@ -552,7 +548,7 @@ impl<T: Real> ChainView<'_, T> {
     /// `thetas` (`rows` rows), the chain, every θ finite.
     fn check_batch_thetas(&self, thetas: &[T], rows: usize) -> Result<(), BatchError> {
         let n = self.joints.len();
-        if rows_times(rows, n) != Some(thetas.len()) {
+        if rows.checked_mul(n) != Some(thetas.len()) {
             return Err(Error::LengthMismatch.into());
         }
         self.check()?;
