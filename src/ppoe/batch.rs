@@ -34,7 +34,7 @@ use crate::joint::Joint;
 use crate::kinematics::ChainView;
 use crate::linalg::Mat6;
 use crate::scalar::Real;
-use crate::se3::congruence::{mirror_lower, transport_lower, Pack};
+use crate::se3::congruence::{mirror_lower, transport_lower, Congruence, Pack};
 use crate::se3::Transform;
 use crate::uncertainty::check_covariance;
 
@@ -206,20 +206,35 @@ fn dense_lanes<T: Real, C: CovLanes<T, W>, const W: usize>(
         } else {
             tip_frame(chain, thetas, covs, convention, &group, &mut acc)
         };
+        if convention == Convention::Pytransform3d {
+            acc = moved_to_tip(&chain.home, &acc);
+        }
         for (k, o) in chunk.iter_mut().enumerate() {
-            // `0 + x`, as the one-lane schedule's final sum.
-            let cov = mirror_lower(lane(&acc, k, T::ZERO));
-            let cov = if convention == Convention::Pytransform3d {
-                chain.home.transport_covariance(&cov)
-            } else {
-                cov
-            };
             *o = UncertainPose {
                 pose: pose.lane(k),
-                cov,
+                // `0 + x`, as the one-lane schedule's final sum.
+                cov: mirror_lower(lane(&acc, k, T::ZERO)),
             };
         }
     }
+}
+
+/// Pytransform3d's sums moved by Ad(M), `M` = `home`, in every lane: lane k is the one-lane
+/// schedule's `home.transport_covariance` of `mirror_lower(0 + Σₖ)` (the same operations:
+/// `0 + x` mirrored into whole matrices, then [`Congruence::add_lower_splat`] into zeros).
+#[inline(always)]
+fn moved_to_tip<T: Real, const W: usize>(home: &Transform<T>, acc: &Acc<T, W>) -> Acc<T, W> {
+    let zero = Pack::splat(T::ZERO);
+    let mut full = [[zero; 6]; 6];
+    for (i, row) in full.iter_mut().enumerate() {
+        for (j, x) in row.iter_mut().enumerate() {
+            let (r, c) = if i >= j { (i, j) } else { (j, i) };
+            *x = zero + acc.get(r).and_then(|a| a.get(c)).copied().unwrap_or(zero);
+        }
+    }
+    let mut out = [[zero; 6]; 6];
+    Congruence::of(home).add_lower_splat(&full, &mut out);
+    out
 }
 
 /// Base frame, as the schedule's `base_frame` per lane: Σ_left = Σᵢ Ad(Pᵢ)·covᵢ·Ad(Pᵢ)ᵀ,

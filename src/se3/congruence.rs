@@ -140,6 +140,19 @@ impl<T: Real> Congruence<T> {
         transport_lower(&self.r, &self.q, &cov.0, acc);
     }
 
+    /// This congruence in every lane: adds the lower triangle of `Ad·Σₖ·Adᵀ` to lane k of
+    /// `acc`, Σₖ lane k of `c` (every entry read: `c` holds whole symmetric matrices). Lane
+    /// k is bit-identical to [`Congruence::add_lower`] on Σₖ (the same operations).
+    #[inline(always)]
+    pub(crate) fn add_lower_splat<const W: usize>(
+        &self,
+        c: &[[Pack<T, W>; 6]; 6],
+        acc: &mut [[Pack<T, W>; 6]; 6],
+    ) {
+        let r = self.r.map(|row| row.map(Pack::splat));
+        transport_lower(&r, &self.q.map(Pack::splat), c, acc);
+    }
+
     /// W congruences side by side: adds the lower triangle of congruence k applied to
     /// covariance k to lane k of `acc`. The same operations on [`Pack`] lanes, which the
     /// optimiser maps to SIMD where the target has it. Every pack is built whole from its
