@@ -3,7 +3,7 @@
 //! configuration does not depend on the batch it is in: a batch's results equal the
 //! single calls' (batches of one) bit for bit.
 
-use crate::convert::{array, elements, mat6s, push_matrix, push_transform};
+use crate::convert::{array, elements, mat6s, push_transform};
 use crate::{core_err, PpoeError};
 use numpy::{Element, PyArrayDyn, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use ppoe::chain::{ChainView, Convention, UncertainPose};
@@ -46,6 +46,7 @@ pub(crate) fn ppoe<'py, T: Real + Element + Send + Sync>(
     thetas: &PyReadonlyArrayDyn<'py, T>,
     covs: &PyReadonlyArrayDyn<'py, T>,
     convention: Convention,
+    threads: usize,
 ) -> PyResult<(ArrayOf<'py, T>, ArrayOf<'py, T>)> {
     let n = view.joints.len();
     let th = elements(thetas, "thetas", &[usize::MAX, n])?;
@@ -56,23 +57,40 @@ pub(crate) fn ppoe<'py, T: Real + Element + Send + Sync>(
     } else {
         elements(covs, "covs", &[count, n, 6, 6])?
     };
-    let (poses, out_covs) = py.detach(|| ppoe_all(view, count, th, c, shared, convention))?;
+    let (poses, out_covs) =
+        py.detach(|| ppoe_all(view, count, th, c, shared, convention, threads))?;
     Ok((
         array(py, poses, &[count, 4, 4])?,
         array(py, out_covs, &[count, 6, 6])?,
     ))
 }
 
-/// Configurations per call of the core: the results of one call sit in a buffer on the
-/// stack before they are written to the output arrays, which are touched once.
-const CHUNK: usize = 64;
+/// Configurations per call of the core: the results of one call sit in a buffer (98 KB in
+/// f64, within a core's L2 cache) before they are written to the output arrays, which are
+/// touched once; the shared covariances' checks (a Cholesky factorisation each) are then
+/// paid once per 256 configurations.
+const CHUNK: usize = 256;
 
-/// The PPOE of every configuration through the core's checked batch calls
-/// (`ppoe_batch_checked`, or `ppoe_batch_per_config_checked` when `covs` holds n
-/// covariances per configuration rather than n shared by all), `CHUNK` configurations at a
-/// time: a configuration's result does not depend on the batch it is in, so a single
-/// configuration (a batch of one) and the same configuration in any batch agree bit for
-/// bit. Writes 16 + 36 values per configuration.
+/// Configurations below which a batch runs on one thread whatever `threads` says: a
+/// thread's start costs about as much as a few hundred configurations.
+const PER_THREAD: usize = 2048;
+
+/// How many threads a batch of `count` configurations runs on: `threads` (0: every core
+/// the operating system offers), at most one per [`PER_THREAD`] configurations.
+pub(crate) fn thread_count(count: usize, threads: usize) -> usize {
+    let want = match threads {
+        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        t => t,
+    };
+    want.min(count / PER_THREAD).max(1)
+}
+
+/// The PPOE of every configuration, on `threads` threads ([`thread_count`]) each given a
+/// contiguous range of configurations ([`ppoe_range`]). A configuration's result does not
+/// depend on the batch it is in, so the results are the same bits whatever the thread
+/// count; the error reported is that of the first failing range. Writes 16 + 36 values
+/// per configuration.
+#[allow(clippy::too_many_arguments)]
 fn ppoe_all<T: Real>(
     view: ChainView<'_, T>,
     count: usize,
@@ -80,31 +98,84 @@ fn ppoe_all<T: Real>(
     covs: &[T],
     shared: bool,
     convention: Convention,
+    threads: usize,
 ) -> Result<(Vec<T>, Vec<T>), PyErr> {
-    let n = view.joints.len();
     let per = mat6s(covs);
-    let (mut poses, mut out_covs) = (
-        Vec::with_capacity(16 * count),
-        Vec::with_capacity(36 * count),
-    );
-    let mut buf = [UncertainPose::certain(Transform::identity()); CHUNK];
-    for first in (0..count).step_by(CHUNK) {
-        let rows = CHUNK.min(count - first);
-        let (th, out) = (&thetas[first * n..(first + rows) * n], &mut buf[..rows]);
-        let done = if shared {
-            view.ppoe_batch_checked(th, &per, convention, out)
-        } else {
-            let c = &per[first * n..(first + rows) * n];
-            view.ppoe_batch_per_config_checked(th, c, convention, out)
-        };
-        done.map_err(|e| match e.config {
-            Some(i) => batch_err(first + i, e.error),
-            None => core_err(e.error),
-        })?;
-        for r in out.iter() {
-            push_transform(&mut poses, &r.pose);
-            push_matrix(&mut out_covs, &r.cov);
-        }
-    }
+    let (mut poses, mut out_covs) = (vec![T::ZERO; 16 * count], vec![T::ZERO; 36 * count]);
+    let size = count.div_ceil(thread_count(count, threads)).max(1);
+    let job = Batch {
+        view,
+        thetas,
+        covs: &per,
+        shared,
+        convention,
+    };
+    let results: Vec<Result<(), PyErr>> = std::thread::scope(|s| {
+        let ranges = poses
+            .chunks_mut(16 * size)
+            .zip(out_covs.chunks_mut(36 * size));
+        let handles: Vec<_> = ranges
+            .enumerate()
+            .map(|(k, (p, c))| s.spawn(move || job.range(k * size, p, c)))
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| {
+                h.join()
+                    .unwrap_or_else(|_| Err(PpoeError::new_err("a batch thread panicked")))
+            })
+            .collect()
+    });
+    results.into_iter().collect::<Result<(), PyErr>>()?;
     Ok((poses, out_covs))
+}
+
+/// One batch's inputs, shared by its threads.
+#[derive(Clone, Copy)]
+struct Batch<'a, T> {
+    view: ChainView<'a, T>,
+    thetas: &'a [T],
+    covs: &'a [ppoe::Mat6<T>],
+    shared: bool,
+    convention: Convention,
+}
+
+impl<T: Real> Batch<'_, T> {
+    /// The configurations from `first` on, as many as `poses` has room for (16 values
+    /// each; `covs` 36 each), through the core's checked batch calls (`ppoe_batch_checked`,
+    /// or `ppoe_batch_per_config_checked` when `covs` holds n covariances per
+    /// configuration rather than n shared by all), `CHUNK` configurations at a time.
+    fn range(&self, first: usize, poses: &mut [T], covs: &mut [T]) -> Result<(), PyErr> {
+        let n = self.view.joints.len();
+        let count = poses.len() / 16;
+        let mut buf = vec![UncertainPose::certain(Transform::identity()); CHUNK.min(count)];
+        let dst = poses
+            .chunks_mut(16 * CHUNK)
+            .zip(covs.chunks_mut(36 * CHUNK));
+        for (k, (pdst, cdst)) in dst.enumerate() {
+            let (at, rows) = (first + k * CHUNK, pdst.len() / 16);
+            let (th, out) = (&self.thetas[at * n..(at + rows) * n], &mut buf[..rows]);
+            let done = if self.shared {
+                self.view
+                    .ppoe_batch_checked(th, self.covs, self.convention, out)
+            } else {
+                let c = &self.covs[at * n..(at + rows) * n];
+                self.view
+                    .ppoe_batch_per_config_checked(th, c, self.convention, out)
+            };
+            done.map_err(|e| match e.config {
+                Some(i) => batch_err(at + i, e.error),
+                None => core_err(e.error),
+            })?;
+            for (r, (p, c)) in out.iter().zip(pdst.chunks_mut(16).zip(cdst.chunks_mut(36))) {
+                for (d, x) in p.iter_mut().zip(r.pose.to_matrix4().iter().flatten()) {
+                    *d = *x;
+                }
+                for (d, x) in c.iter_mut().zip(r.cov.0.iter().flatten()) {
+                    *d = *x;
+                }
+            }
+        }
+        Ok(())
+    }
 }

@@ -143,13 +143,15 @@ impl Robot {
     }
 
     /// The PPOE of N configurations `thetas` (N, n) with covariances (n, 6, 6) shared by
-    /// all or (N, n, 6, 6), in `convention` → poses (N, 4, 4), covariances (N, 6, 6).
+    /// all or (N, n, 6, 6), in `convention` → poses (N, 4, 4), covariances (N, 6, 6), on
+    /// `threads` threads (0: every core; see `batch::thread_count`).
     fn ppoe<'py>(
         &self,
         py: Python<'py>,
         thetas: PyReadonlyArrayDyn<'py, f64>,
         covs: PyReadonlyArrayDyn<'py, f64>,
         convention_name: &str,
+        threads: usize,
     ) -> PyResult<Pair<'py>> {
         batch::ppoe(
             py,
@@ -157,6 +159,7 @@ impl Robot {
             &thetas,
             &covs,
             convention(convention_name)?,
+            threads,
         )
     }
 
@@ -168,6 +171,7 @@ impl Robot {
         thetas: PyReadonlyArrayDyn<'py, f32>,
         covs: PyReadonlyArrayDyn<'py, f32>,
         convention_name: &str,
+        threads: usize,
     ) -> PyResult<(Bound<'py, PyArrayDyn<f32>>, Bound<'py, PyArrayDyn<f32>>)> {
         batch::ppoe(
             py,
@@ -175,6 +179,7 @@ impl Robot {
             &thetas,
             &covs,
             convention(convention_name)?,
+            threads,
         )
     }
 }

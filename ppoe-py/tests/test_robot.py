@@ -88,6 +88,39 @@ def test_batch_equals_loop_exactly(robots, conv):
         np.testing.assert_array_equal(fk[i], r.forward_kinematics(thetas[i]))
 
 
+@pytest.mark.parametrize("conv", ["pytransform3d", "right"])
+def test_threads_give_the_same_bits(robots, conv):
+    # 5000 configurations: two threads of 2500 (one per 2048 at most), three with threads=3
+    # capped to two; per-configuration covariances exercise the other core call.
+    r = robots[0][conv]
+    rng = np.random.default_rng(5)
+    thetas = rng.uniform(-2, 2, (5000, 6))
+    shared = random_case(rng)[1]
+    per = np.repeat(shared[np.newaxis], 5000, axis=0)
+    one = r.probabilistic_forward_kinematics(thetas, shared, threads=1)
+    for covs in (shared, per):
+        for threads in (None, 2, 3):
+            got = r.probabilistic_forward_kinematics(thetas, covs, threads=threads)
+            np.testing.assert_array_equal(got[0], one[0])
+            np.testing.assert_array_equal(got[1], one[1])
+
+
+def test_threaded_batch_names_the_failing_configuration(robots):
+    r = robots[0]["right"]
+    rng = np.random.default_rng(6)
+    thetas = rng.uniform(-2, 2, (5000, 6))
+    per = np.repeat(random_case(rng)[1][np.newaxis], 5000, axis=0)
+    per[4321, 2] = -np.eye(6)  # in the second thread's range
+    with pytest.raises(ppoe.PpoeError, match="configuration 4321: "):
+        r.probabilistic_forward_kinematics(thetas, per, threads=2)
+
+
+@pytest.mark.parametrize("bad", [0, -1, 1.5, True, "2"])
+def test_threads_must_be_a_positive_int(robots, seed_covs, bad):
+    with pytest.raises(ValueError, match="threads"):
+        robots[0]["right"].probabilistic_forward_kinematics(np.zeros(6), seed_covs, threads=bad)
+
+
 def test_forward_kinematics_is_the_mean(robots):
     ours, oracle = robots
     rng = np.random.default_rng(3)
