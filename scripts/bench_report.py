@@ -129,6 +129,9 @@ def selftest():
            " min_ns=151.81 batches=7 calls=5000 max_abs_err=2.220e-16\n")
     r = kv_lines(pin, "pinocchio")
     assert r[0]["robot"] == "seed" and float(r[0]["ns_per_call"]) == 153.07, r
+    assert pinocchio_batch_ns(pin) == {"seed": 153.07}
+    varied = pin + "pinocchio_batch robot=seed joints=6 ns_per_config=160.50 configs=256 batches=7\n"
+    assert pinocchio_batch_ns(varied) == {"seed": 160.5} and pinocchio_ns(varied) == {"seed": 153.07}
     assert kv_lines(pin, "versions")[0]["pin"] == "4.1.0"
     assert step_error("error: skipped: g++ is not installed") == "skipped: g++ is not installed"
     assert step_error(pin) is None
@@ -272,6 +275,13 @@ def pinocchio_ns(pin_text):
     return {r["robot"]: float(r["ns_per_call"]) for r in kv_lines(pin_text, "pinocchio")}
 
 
+def pinocchio_batch_ns(pin_text):
+    """robot name -> Pinocchio FK median ns per call cycling through 256 varied
+    configurations (fk_bench's pinocchio_batch lines), else its fixed-configuration time."""
+    varied = {r["robot"]: float(r["ns_per_config"]) for r in kv_lines(pin_text, "pinocchio_batch")}
+    return {**pinocchio_ns(pin_text), **varied}
+
+
 def render_robots(crit, pin_text, ir):
     """Seed and 7-joint arm: ppoe PPOE/FK, the nalgebra port, Pinocchio's FK (ns per call),
     and their instruction counts where callgrind ran."""
@@ -340,11 +350,12 @@ def batch_ns(crit, key, impl, t):
 def render_batch(crit, pin_text):
     """Batch PPOE per configuration against single calls, the nalgebra port and Pinocchio's
     FK, dense covariances on every joint (benches/ops.rs, batch_ops)."""
-    pin = pinocchio_ns(pin_text)
+    pin = pinocchio_batch_ns(pin_text)
     L = ["## Batch PPOE: many configurations per call, dense covariances on every joint", ""]
     L.append("`ChainView::ppoe_batch` on %d configurations (uniform in [−1, 1] per joint) per call, its" % BATCH)
     L.append("time divided by %d, against a single `ChainView::ppoe` call, the dense nalgebra port and" % BATCH)
-    L.append("Pinocchio's rigid FK (from the Pinocchio run above), ns per configuration (criterion medians);")
+    L.append("Pinocchio's rigid FK (the harness above, cycling through %d configurations of the same" % BATCH)
+    L.append("distribution: its `pinocchio_batch` lines), ns per configuration (criterion medians);")
     L.append("every joint has a full-rank covariance (`robots::arm7_covs`), right perturbation, default target.")
     L.append("")
     L.append("| robot | scalar | batch PPOE / config | single PPOE | nalgebra port PPOE | Pinocchio FK f64 | batch / Pinocchio FK | single / batch | nalgebra / single |")
@@ -369,16 +380,20 @@ def render_python_batch(pb, m):
     L.append("`target/python-check/venv`: pytransform3d 3.17.0 and numpy from PyPI); load average %s" %
              " ".join("%.2f" % x for x in pb.get("load_average", [])))
     L.append("when it started. Seed robot, joint values uniform in [−1, 1]⁶, the seed example's joint")
-    L.append("covariances, `convention=\"pytransform3d\"`; microseconds per configuration, medians of repeats:")
+    L.append("covariances, `convention=\"pytransform3d\"`; OPENBLAS_NUM_THREADS=%s (numpy's idle BLAS" % pb.get("openblas_num_threads", "unset"))
+    L.append("threads would spin on the cores ppoe's threads use); microseconds per configuration, medians of repeats:")
     L.append("")
     L.append("| implementation | µs / configuration | pytransform3d's example is slower by |")
     L.append("|---|---:|---:|")
     ex = pb["pytransform3d_example_us"]
-    rows = (("**ppoe batch**: one `probabilistic_forward_kinematics` call, thetas (10000, 6), covs (6, 6, 6) shared, GIL released", "ppoe_batch_us"),
+    threads = "every core (%s)" % pb.get("cpu_count", "?")
+    rows = (("**ppoe batch**: one `probabilistic_forward_kinematics` call, thetas (10000, 6), covs (6, 6, 6) shared, GIL released, on %s" % threads, "ppoe_batch_us"),
+            ("ppoe batch as above with `threads=1`", "ppoe_batch_one_thread_us"),
             ("ppoe batch with covs (10000, 6, 6, 6), each checked symmetric PSD", "ppoe_batch_per_config_covs_us"),
             ("Python loop of single ppoe calls", "ppoe_loop_us"))
     for name, k in rows:
-        L.append("| %s | %.3f | %.0f× |" % (name, pb[k], ex / pb[k]))
+        if k in pb:
+            L.append("| %s | %.3f | %.0f× |" % (name, pb[k], ex / pb[k]))
     L.append("| pytransform3d 3.17.0 example `probabilistic_forward_kinematics` (timed on 200 of the configurations) | %.1f | — |" % ex)
     L.append("")
     return L
@@ -456,10 +471,11 @@ def target_rows(crit, pin_text):
                  q(crit.get("ppoe_%s/nalgebra/f64" % key), p64))
         at_most("host PPOE f32/f64 time, %s" % robot, 1, q(p32, p64))
         at_most("host f64 PPOE / Pinocchio FK, %s" % robot, 0.8, q(p64, pin.get(pkey)))
+    pin_batch = pinocchio_batch_ns(pin_text)
     for robot, key, pkey in (("seed", "seed", "seed"), ("7-joint arm", "7dof", "arm7")):
         b = lambda i, t: batch_ns(crit, key, i, t)
         at_most("host f64 batch PPOE per configuration / Pinocchio FK, dense, %s" % robot, 1.0,
-                q(b("batch", "f64"), pin.get(pkey)))
+                q(b("batch", "f64"), pin_batch.get(pkey)))
         at_least("host f64 single PPOE vs the nalgebra port, dense, %s" % robot, 3,
                  q(b("nalgebra", "f64"), b("single", "f64")))
         at_most("host f32/f64 time, dense, single call, %s" % robot, 1, q(b("single", "f32"), b("single", "f64")))

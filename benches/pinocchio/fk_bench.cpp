@@ -7,9 +7,12 @@
 // the exported placements), the tip pose oMi[n]·tip of every test configuration is
 // compared with ppoe's (exit status 1 if any element differs by more than 1e-12), then
 // BATCHES batches of CALLS calls on the first configuration are timed (arguments 1 and 2;
-// argument 3, if given, names the only robot to run); one line per robot:
+// argument 3, if given, names the only robot to run), then the same number of batches
+// cycling through 256 configurations uniform in [-1, 1] per joint (the batch benchmarks'
+// distribution, for the per-configuration comparison with ppoe's batch); two lines per robot:
 //   pinocchio robot=<name> joints=<n> ns_per_call=<median> min_ns=<f> batches=<b>
 //   calls=<c> max_abs_err=<e>
+//   pinocchio_batch robot=<name> joints=<n> ns_per_config=<median> configs=256 batches=<b>
 #include <pinocchio/multibody.hpp>
 #include <pinocchio/algorithm/kinematics.hpp>
 
@@ -17,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -73,6 +77,35 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// As many configurations as the batch benchmarks of benches/ops.rs (BATCH) use.
+constexpr int kConfigs = 256;
+
+// Median ns per call over `batches` batches of about `calls` calls, cycling through kConfigs
+// configurations uniform in [-1, 1] per joint (the distribution of the batch benchmarks; a
+// fixed seed), so that the branches of sin/cos see varied angles as the batch's do.
+double time_configurations(const pinocchio::Model& model, pinocchio::Data& data, int n, int batches,
+                           int calls) {
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Eigen::VectorXd> qs(kConfigs, Eigen::VectorXd(n));
+  for (auto& q : qs)
+    for (int j = 0; j < n; ++j) q(j) = u(rng);
+  const int rounds = std::max(1, calls / kConfigs);
+  std::vector<double> ns;
+  for (int b = 0; b < batches; ++b) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int r = 0; r < rounds; ++r) {
+      for (const auto& q : qs) {
+        asm volatile("" : : "g"(q.data()), "g"(&data) : "memory");
+        pinocchio::forwardKinematics(model, data, q);
+      }
+    }
+    const auto t1 = std::chrono::steady_clock::now();
+    ns.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() / (rounds * kConfigs));
+  }
+  return median(ns);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -104,6 +137,9 @@ int main(int argc, char** argv) {
     }
     std::printf("pinocchio robot=%s joints=%d ns_per_call=%.2f min_ns=%.2f batches=%d calls=%d max_abs_err=%.3e\n",
                 t.name, t.n, median(ns), *std::min_element(ns.begin(), ns.end()), batches, calls, err);
+    const double varied = time_configurations(model, data, t.n, batches, calls);
+    std::printf("pinocchio_batch robot=%s joints=%d ns_per_config=%.2f configs=%d batches=%d\n", t.name,
+                t.n, varied, kConfigs, batches);
   }
   return status;
 }

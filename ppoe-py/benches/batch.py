@@ -3,7 +3,8 @@
 Per configuration, median of repeats:
 
 * ``ppoe batch``: one ``probabilistic_forward_kinematics`` call on (10000, 6) joint values
-  with the joint covariances shared (the GIL released inside);
+  with the joint covariances shared (the GIL released inside), on every core (the
+  default ``threads=None``), and the same with ``threads=1``;
 * ``ppoe batch, per-config covs``: the same with (10000, 6, 6, 6) covariances;
 * ``ppoe loop``: a Python loop of single calls over the same configurations;
 * ``pytransform3d example``: the example's ``probabilistic_forward_kinematics`` as
@@ -23,6 +24,11 @@ installed (the venv of scripts/python-check.sh has both):
 import importlib.util
 import json
 import os
+
+# OpenBLAS's idle worker threads spin on the other cores for a while after any BLAS call and
+# would compete with ppoe's threads; pytransform3d's example (3x3 to 6x6 products) runs on
+# one thread either way. An explicit setting in the environment is kept.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import platform
 import statistics
 import time
@@ -76,7 +82,10 @@ def main():
         "machine": platform.machine(),
         "load_average": os.getloadavg(),
         "configurations": N,
+        "cpu_count": os.cpu_count(),
+        "openblas_num_threads": os.environ.get("OPENBLAS_NUM_THREADS"),
         "ppoe_batch_us": 1e6 * per_config(lambda: pfk(thetas, covs), N, 21),
+        "ppoe_batch_one_thread_us": 1e6 * per_config(lambda: pfk(thetas, covs, threads=1), N, 21),
         "ppoe_batch_per_config_covs_us": 1e6 * per_config(lambda: pfk(thetas, per), N, 11),
         "ppoe_loop_us": 1e6 * per_config(lambda: [pfk(t, covs) for t in thetas], N, 3),
         "pytransform3d_example_us": 1e6
