@@ -8,6 +8,8 @@
 #   1. criterion, one invocation: cargo bench --bench ops --bench rank1 -- --warm-up-time 1
 #      --measurement-time 3 (medians read from <target>/criterion/**/new/estimates.json;
 #      the old results are deleted first);
+#  1b. the batch benchmarks again built with -C target-cpu=x86-64-v3, if the CPU has it
+#      (reported beside the default target's, not a target);
 #   2. Pinocchio's forwardKinematics on the seed robot and test_data/urdf/arm7.urdf: pip
 #      package `pin` in a venv ($PPOE_PIN_VENV, default <target>/pin-venv), the ops binary
 #      writes the robots as a C++ header (PPOE_PINOCCHIO_EXPORT), benches/pinocchio/
@@ -88,6 +90,22 @@ BIN=$(CARGO_TARGET_DIR=$TD cargo bench --bench ops --no-run --message-format=jso
 for l in sys.stdin:
     m=json.loads(l)
     if m.get('reason')=='compiler-artifact' and m['target']['name']=='ops' and m.get('executable'): print(m['executable'])" | tail -1)
+
+# --- 1b. the batch benchmarks built for x86-64-v3 (reported, not a target) -----------------
+# Same criterion arguments, the batch_ benchmarks only, their own target dir; only where the
+# CPU has the v3 features (AVX2, FMA, BMI2, MOVBE: the binary would not run otherwise). Rust
+# contracts no a·b + c into an FMA, so the results are the default build's bits.
+if grep -qw avx2 /proc/cpuinfo && grep -qw fma /proc/cpuinfo && grep -qw bmi2 /proc/cpuinfo &&
+   grep -qw movbe /proc/cpuinfo; then
+  echo "---- criterion, batch_ benchmarks, -C target-cpu=x86-64-v3"
+  rm -rf "$TD-v3/criterion"
+  # shellcheck disable=SC2086
+  RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR=$TD-v3 cargo bench --bench ops -- $CRIT_ARGS batch_ \
+    | grep -E '^[a-z_0-9/]+ +time:' || true
+  echo "$TD-v3/criterion" >"$OUT/criterion_v3_dir"
+else
+  echo "bench-report: this CPU lacks an x86-64-v3 feature; no v3 section" >&2
+fi
 
 # --- 2. Pinocchio -------------------------------------------------------------------------
 # Prints why it cannot run (return 2) or the harness's lines; any other failure (the check

@@ -370,6 +370,29 @@ def render_batch(crit, pin_text):
     return L
 
 
+def render_batch_v3(crit, d):
+    """The batch benchmarks of a -C target-cpu=x86-64-v3 build (step 1b) beside the default
+    target's, ns per configuration."""
+    path = os.path.join(d, "criterion_v3_dir")
+    v3 = criterion_medians(open(path).read().strip()) if os.path.exists(path) else {}
+    L = ["### The same with `-C target-cpu=x86-64-v3` (reported, not a target)", ""]
+    if not v3:
+        return L + ["Not measured in this run (the CPU lacks an x86-64-v3 feature, or step 1b failed).", ""]
+    L.append("`RUSTFLAGS=\"-C target-cpu=x86-64-v3\"` (AVX2, FMA; Rust contracts no product and sum into")
+    L.append("an FMA, so the results are the default build's bits), the `batch_` benchmarks only, right after")
+    L.append("the default run; ns per configuration (criterion medians).")
+    L.append("")
+    L.append("| robot | scalar | batch, default | batch, v3 | single, default | single, v3 | default / v3 (batch) |")
+    L.append("|---|---|---:|---:|---:|---:|---:|")
+    for robot, key in (("seed", "seed"), ("7-joint arm", "7dof")):
+        for t in ("f64", "f32"):
+            b, b3 = batch_ns(crit, key, "batch", t), batch_ns(v3, key, "batch", t)
+            s1, s3 = batch_ns(crit, key, "single", t), batch_ns(v3, key, "single", t)
+            L.append("| %s | %s | %s | %s | %s | %s | %s |" % (robot, t, ns(b), ns(b3), ns(s1), ns(s3), ratio(b, b3)))
+    L.append("")
+    return L
+
+
 def render_python_batch(pb, m):
     """The Python package's batch of 10,000 seed configurations (ppoe-py/benches/batch.py)."""
     L = ["## Python package: a batch of 10,000 seed configurations (ppoe-py/benches/batch.py)", ""]
@@ -571,6 +594,7 @@ def render(d):
     p("")
     L.extend(render_robots(crit, pin_text, (cg or {}).get("ir_per_call", {})))
     L.extend(render_batch(crit, pin_text))
+    L.extend(render_batch_v3(crit, d))
     L.extend(render_python_batch(load(os.path.join(d, "python_batch.json")), m))
     L.extend(render_rank1(crit))
     L.extend(render_fit(fit_text).splitlines())
