@@ -13,7 +13,8 @@
 //! ```
 //!
 //! Errors are reported as one line on stderr (`error: ...`); exit status 2 for a usage
-//! error, 1 for anything else (see [`report::EXIT_CODES`]).
+//! error, 3 for a fit written but rejected, 1 for anything else (see
+//! [`report::EXIT_CODES`]).
 
 mod args;
 mod calibration;
@@ -120,7 +121,7 @@ fn main() -> ExitCode {
     let result = run(cli);
     let stdout_error = output::take_stdout_error();
     match (result, stdout_error) {
-        (Err(e), _) => report::report(&format!("{e:#}")),
+        (Err(e), _) => report::error(&e),
         (Ok(()), Some(e)) => report::report(&e),
         (Ok(()), None) => ExitCode::SUCCESS,
     }

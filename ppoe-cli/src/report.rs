@@ -7,7 +7,10 @@ use std::process::ExitCode;
 pub const EXIT_CODES: &str = "Exit status: 0 on success (also when the reader of standard output \
 closes it early, as `ppoe eval ... | head` does); 1 when an input is unreadable or wrong, a \
 computation fails or a file cannot be written (one line on standard error, `error: ...`); 2 \
-for a usage error (unknown subcommand or flag, missing or out-of-range value). FILE \
+for a usage error (unknown subcommand or flag, missing or out-of-range value); 3 when `ppoe \
+fit` wrote its result but its goodness-of-fit test rejects the noise model \
+(`goodness_of_fit.fits` false; `ppoe table --noise` refuses such a file unless \
+--allow-rejected-noise). FILE \
 arguments (--urdf, --input, --noise) accept `-` for standard input (one of them at most) \
 and pipes such as `<(xacro robot.urdf.xacro)`; each input is read once. Output files are \
 written to a temporary file and renamed, so an interrupted run never leaves a partial file \
@@ -16,7 +19,36 @@ symbolic link is kept (the file it points to is replaced).";
 
 /// The exit statuses, in short, for each subcommand's `--help`.
 pub const EXIT_CODES_SHORT: &str = "Exit status: 0 success; 1 bad input, failed computation or \
-write; 2 usage error. FILE may be `-` (standard input) or a pipe.";
+write; 2 usage error; 3 (`fit` only) result written, model rejected by the goodness-of-fit \
+test. FILE may be `-` (standard input) or a pipe.";
+
+/// Exit status of a fit whose result was written but is rejected (see [`EXIT_CODES`]).
+const REJECTED: u8 = 3;
+
+/// The error of a `ppoe fit` whose result was written but is rejected by its
+/// goodness-of-fit test: exit status 3, not 1 (the output is valid).
+#[derive(Debug)]
+pub struct Rejected(pub String);
+
+impl std::fmt::Display for Rejected {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Rejected {}
+
+/// How an error ends the command: a [`Rejected`] fit with status 3 (its message as
+/// `fit: ...`), any other error as [`report`].
+pub fn error(e: &anyhow::Error) -> ExitCode {
+    match e.downcast_ref::<Rejected>() {
+        Some(r) => {
+            eprintln!("fit: {} (exit status {REJECTED})", one_line(&r.0));
+            ExitCode::from(REJECTED)
+        }
+        None => report(&format!("{e:#}")),
+    }
+}
 
 /// Exit status of a usage error (clap's convention).
 const USAGE_ERROR: u8 = 2;

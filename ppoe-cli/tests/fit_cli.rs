@@ -218,7 +218,15 @@ fn campaign(position: bool) -> (Value, ppoe_fit::simulate::Systematic) {
     (json!({ "samples": s }), sys)
 }
 
+/// Runs `ppoe fit` on `input`: (exit status 0, the output JSON, stderr). A rejected fit
+/// (status 3) still writes its JSON: see [`fit_status`].
 fn fit_json(dir: &Path, input: &Value, extra: &[&str]) -> (bool, Value, String) {
+    let (code, v, stderr) = fit_status(dir, input, extra);
+    (code == Some(0), v, stderr)
+}
+
+/// As [`fit_json`] with the exit status itself.
+fn fit_status(dir: &Path, input: &Value, extra: &[&str]) -> (Option<i32>, Value, String) {
     let data = dir.join("campaign.json");
     std::fs::write(&data, input.to_string()).unwrap();
     let mut args = vec!["fit", "--input", data.to_str().unwrap(), "--model", "joint"];
@@ -226,7 +234,7 @@ fn fit_json(dir: &Path, input: &Value, extra: &[&str]) -> (bool, Value, String) 
     let r = ppoe(&args);
     let stderr = String::from_utf8_lossy(&r.stderr).to_string();
     let v = serde_json::from_slice(&r.stdout).unwrap_or(Value::Null);
-    (r.status.success(), v, stderr)
+    (r.status.code(), v, stderr)
 }
 
 /// Without `--estimate` the campaign is rejected with a warning naming calibration; with
@@ -236,10 +244,12 @@ fn fit_json(dir: &Path, input: &Value, extra: &[&str]) -> (bool, Value, String) 
 fn campaign_needs_and_gets_calibration() {
     let dir = scratch("campaign");
     let (input, sys) = campaign(false);
-    let (ok, v, stderr) = fit_json(&dir, &input, &[]);
-    assert!(ok, "{stderr}");
+    // Rejected: the result is written, the exit status is 3, and stderr says why.
+    let (code, v, stderr) = fit_status(&dir, &input, &[]);
+    assert_eq!(code, Some(3), "{stderr}");
     assert_eq!(v["goodness_of_fit"]["fits"], false, "{stderr}");
     assert!(stderr.contains("--estimate base,tip,offsets"), "{stderr}");
+    assert!(stderr.contains("goodness-of-fit test rejects") && stderr.contains("exit status 3"));
     let (ok, v, stderr) = fit_json(&dir, &input, &["--estimate", "base,tip,offsets"]);
     assert!(ok, "{stderr}");
     let table = stderr

@@ -65,9 +65,28 @@ pub fn run(a: &FitArgs) -> anyhow::Result<()> {
     let mut text = crate::pretty::to_string(&result)?;
     text.push('\n');
     match &a.out {
-        Some(p) => output::write_atomic(p, |w| w.write_all(text.as_bytes())),
-        None => output::print(text.as_bytes()),
+        Some(p) => output::write_atomic(p, |w| w.write_all(text.as_bytes()))?,
+        None => output::print(text.as_bytes())?,
     }
+    match verdict(&result) {
+        Some(why) => Err(crate::report::Rejected(why).into()),
+        None => Ok(()),
+    }
+}
+
+/// Why a written fit is not to be used, if it is not: its goodness-of-fit test rejects the
+/// noise model (the output's `goodness_of_fit.fits`), the test `ppoe table --noise` also
+/// applies. A fit that did not converge is only a warning (in the output and on stderr):
+/// its estimates can still be good.
+fn verdict(result: &serde_json::Value) -> Option<String> {
+    if result["goodness_of_fit"]["fits"] == serde_json::Value::Bool(true) {
+        return None;
+    }
+    Some(
+        "the goodness-of-fit test rejects the noise model (see the warnings above); the \
+         result is written, `ppoe table --noise` refuses it unless --allow-rejected-noise"
+            .into(),
+    )
 }
 
 /// `--estimate`'s list: `base`, `tip`, `offsets`, `kinematics` (any subset), or `all`.
