@@ -18,7 +18,8 @@ pub struct ChainArgs {
     #[arg(long, value_name = "LINK")]
     pub tip: String,
     /// The moving joints, base to tip, comma-separated (default: every moving joint on
-    /// the path; moving joints left out are frozen at 0).
+    /// the path; moving joints left out are frozen at 0, a mimic joint too even if its
+    /// master is listed: list it to have it follow).
     #[arg(long, value_name = "A,B,...", value_delimiter = ',')]
     pub joints: Option<Vec<String>>,
 }
