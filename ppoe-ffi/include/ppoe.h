@@ -31,6 +31,14 @@
 #define PPOE_MAX_JOINTS 16
 
 /*
+ The layout of `ppoe_joint_*` and `ppoe_chain_*` that tables of `ppoe table --lang c` are
+ written for: a table checks it with `#if` and stops the compile with `#error` when the
+ `ppoe.h` it includes has another (or none), so a table and a header from different
+ releases cannot be compiled together.
+ */
+#define PPOE_C_TABLE_FORMAT 1
+
+/*
  Right (local) perturbation of the returned pose, in the tip frame (the default).
  */
 #define PPOE_CONVENTION_RIGHT 0

@@ -71,6 +71,12 @@ pub const PPOE_ERR_GRID_SIZE: ppoe_status = 18;
 /// The most joints a chain may have.
 pub const PPOE_MAX_JOINTS: u32 = 16;
 
+/// The layout of `ppoe_joint_*` and `ppoe_chain_*` that tables of `ppoe table --lang c` are
+/// written for: a table checks it with `#if` and stops the compile with `#error` when the
+/// `ppoe.h` it includes has another (or none), so a table and a header from different
+/// releases cannot be compiled together.
+pub const PPOE_C_TABLE_FORMAT: u32 = 1;
+
 /// Right (local) perturbation of the returned pose, in the tip frame (the default).
 pub const PPOE_CONVENTION_RIGHT: i32 = 0;
 /// Left (global) perturbation, in the base frame.
