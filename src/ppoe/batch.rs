@@ -117,13 +117,42 @@ trait CovLanes<T: Real, const W: usize> {
     fn lanes(&self, i: usize, group: &Group, c: &mut Acc<T, W>) -> bool;
 }
 
-/// One covariance per joint, shared by every configuration.
-struct Shared<'a, T>(&'a [Mat6<T>]);
+/// One covariance per joint, shared by every configuration, with which of the first 64
+/// are zero found once per batch (a zero covariance is scanned whole, and a robot's noise
+/// model often has joints without noise).
+struct Shared<'a, T> {
+    covs: &'a [Mat6<T>],
+    /// Bit i: joint i < 64 has a non-zero covariance.
+    nonzero: u64,
+}
+
+impl<'a, T: Real> Shared<'a, T> {
+    fn new(covs: &'a [Mat6<T>]) -> Self {
+        let nonzero = covs
+            .iter()
+            .take(64)
+            .enumerate()
+            .filter(|(_, c)| !is_zero(c))
+            .fold(0u64, |m, (i, _)| m | u32::try_from(i).map_or(0, |b| 1u64 << (b & 63)));
+        Self { covs, nonzero }
+    }
+
+    /// Joint i's covariance, `None` if it is zero (or absent).
+    #[inline(always)]
+    fn get(&self, i: usize) -> Option<&Mat6<T>> {
+        let cov = self.covs.get(i)?;
+        let zero = match u32::try_from(i).ok().and_then(|b| self.nonzero.checked_shr(b)) {
+            Some(bits) if i < 64 => bits & 1 == 0,
+            _ => is_zero(cov),
+        };
+        (!zero).then_some(cov)
+    }
+}
 
 impl<T: Real, const W: usize> CovLanes<T, W> for Shared<'_, T> {
     #[inline(always)]
     fn lanes(&self, i: usize, _: &Group, c: &mut Acc<T, W>) -> bool {
-        let Some(cov) = self.0.get(i).filter(|c| !is_zero(c)) else {
+        let Some(cov) = self.get(i) else {
             return false;
         };
         for (crow, row) in c.iter_mut().zip(&cov.0) {
@@ -434,7 +463,7 @@ impl<T: Real> ChainView<'_, T> {
         if covs.len() != n || out.len().checked_mul(n) != Some(thetas.len()) {
             return Err(Error::LengthMismatch);
         }
-        dense(self, thetas, &Shared(covs), convention, out);
+        dense(self, thetas, &Shared::new(covs), convention, out);
         Ok(())
     }
 
