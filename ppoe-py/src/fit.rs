@@ -104,7 +104,9 @@ fn measurement_cov(
     let d = if pose { 6 } else { 3 };
     let x = elements(r, "measurement_cov", &[d, d])?;
     Ok(Some(if pose {
-        MeasurementCov::Pose(std::array::from_fn(|i| std::array::from_fn(|j| x[6 * i + j])))
+        MeasurementCov::Pose(std::array::from_fn(|i| {
+            std::array::from_fn(|j| x[6 * i + j])
+        }))
     } else {
         MeasurementCov::Position(std::array::from_fn(|i| {
             std::array::from_fn(|j| x[3 * i + j])
@@ -140,7 +142,7 @@ fn fit<'py>(
         .iter()
         .zip(names)
         .map(|(j, n)| {
-            let mut j = j.clone();
+            let mut j = *j;
             j.name = intern(n);
             j
         })
@@ -153,7 +155,15 @@ fn fit<'py>(
                 raised = Python::attach(|py| cb.call1(py, (it, l)).err());
             }
         };
-        ppoe_fit::fit_campaign(&joints, &home, &samples, r.as_ref(), model, estimate, &mut step)
+        ppoe_fit::fit_campaign(
+            &joints,
+            &home,
+            &samples,
+            r.as_ref(),
+            model,
+            estimate,
+            &mut step,
+        )
     });
     if let Some(e) = raised {
         return Err(e);
@@ -233,9 +243,8 @@ fn test_json(t: &SystematicTest) -> Value {
 /// The `calibration` object (ppoe-cli's `calibration::to_json`).
 fn calibration_json(c: &Calibration) -> Value {
     let pose = |p: &PoseEstimate| json!({"pose": p.pose.to_matrix4(), "cov": p.cov});
-    let rms = |r: &ResidualRms| {
-        json!({"position_mm": r.position_mm, "rotation_mrad": r.rotation_mrad})
-    };
+    let rms =
+        |r: &ResidualRms| json!({"position_mm": r.position_mm, "rotation_mrad": r.rotation_mrad});
     json!({
         "estimated": c.estimated.names(),
         "measurement": if c.position_only { "position" } else { "pose" },

@@ -161,7 +161,7 @@ def test_estimate_as_a_list_is_the_string(robot):
 
 def test_a_rejected_fit_is_returned_with_a_warning(robot):
     # Positions in a tracker's frame 2 m away, fitted as if in the base frame: the
-    # goodness-of-fit test rejects the model (where `ppoe fit` exits with status 3).
+    # goodness-of-fit test rejects the model, which is returned all the same.
     thetas, measured, r = _load("seed_position")
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -270,3 +270,25 @@ def test_native_module_checks_shapes_itself(robot, data):
         _ppoe.fit(robot._robot, data[0], np.zeros((50, 4)), None, "joint", [])
     with pytest.raises(ValueError, match="model must be 'joint' or 'full'"):
         _ppoe.fit(robot._robot, *data, None, "other", [])
+
+
+def test_stub_matches_the_signature():
+    # _fit.pyi is what type checkers see: the same parameters, kinds and defaults.
+    import ast
+    import inspect
+
+    path = os.path.join(os.path.dirname(ppoe.__file__), "_fit.pyi")
+    with open(path) as f:
+        stub = next(n for n in ast.parse(f.read()).body if isinstance(n, ast.FunctionDef))
+    a = stub.args
+    positional = [x.arg for x in a.args]
+    keyword = {x.arg: d for x, d in zip(a.kwonlyargs, a.kw_defaults)}
+    params = inspect.signature(ppoe.fit).parameters.values()
+    assert positional == [p.name for p in params if p.kind is p.POSITIONAL_OR_KEYWORD]
+    runtime = {p.name: p.default for p in params if p.kind is p.KEYWORD_ONLY}
+    assert list(keyword) == list(runtime)
+    for name, default in runtime.items():
+        # A required keyword has no default in the stub either.
+        assert (keyword[name] is None) == (default is inspect.Parameter.empty), name
+        if keyword[name] is not None:
+            assert ast.literal_eval(keyword[name]) == default, name

@@ -8,7 +8,7 @@ from ._robot import ProbabilisticRobotKinematics
 
 _MODELS = ("joint", "full")
 
-# What `ppoe fit` says when it exits with status 3 (result written, model rejected).
+# A rejected model is written by `ppoe fit` all the same, with goodness_of_fit.fits false.
 _REJECTED = (
     "the goodness-of-fit test rejects the noise model (goodness_of_fit['fits'] is False, "
     "see the result's 'warnings'); `ppoe table --noise` refuses such a model unless "
@@ -89,8 +89,9 @@ def fit(robot, thetas, measurements, *, model, estimate=None, measurement_cov=No
     RuntimeWarning
         One per entry of ``result["warnings"]`` (``ppoe fit`` prints them on standard
         error: not converged, clipped joint values, a large residual floor, ...), and
-        one if ``result["goodness_of_fit"]["fits"]`` is False (where ``ppoe fit`` exits
-        with status 3): the result is returned, and is not to be used as a noise model.
+        one if ``result["goodness_of_fit"]["fits"]`` is False (the goodness-of-fit test
+        rejects the model): the result is returned, as ``ppoe fit`` writes it, and is not
+        to be used as a noise model.
 
     Raises
     ------
