@@ -12,6 +12,7 @@ use pyo3::prelude::*;
 mod batch;
 mod convert;
 mod estimate;
+mod fit;
 mod robot;
 mod ros;
 mod surface;
@@ -35,6 +36,7 @@ fn _ppoe(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("PpoeError", m.py().get_type::<PpoeError>())?;
     uncertainty::register(m)?;
     estimate::register(m)?;
+    fit::register(m)?;
     surface::register(m)?;
     ros::register(m)?;
     m.add_class::<robot::Robot>()?;

@@ -18,6 +18,10 @@ pub(crate) struct Robot {
     /// The same chain in f32 (`Joint::from_f64`, `Transform::from_f64`), for float32 input.
     joints32: Vec<Joint<f32>>,
     home32: Transform<f32>,
+    /// The base and tip links and the joint names (base to tip), for the fit's report.
+    base: String,
+    tip: String,
+    names: Vec<String>,
 }
 
 fn convention(name: &str) -> PyResult<Convention> {
@@ -45,6 +49,16 @@ impl Robot {
             joints: &self.joints,
             home: self.home,
         }
+    }
+
+    /// The f64 chain and the home pose (the fit's input).
+    pub(crate) fn chain(&self) -> (&[Joint<f64>], &Transform<f64>) {
+        (&self.joints, &self.home)
+    }
+
+    /// The base link, the tip link and the joint names, base to tip.
+    pub(crate) fn names(&self) -> (&str, &str, &[String]) {
+        (&self.base, &self.tip, &self.names)
     }
 
     fn view32(&self) -> ChainView<'_, f32> {
@@ -85,6 +99,9 @@ impl Robot {
             home,
             joints32: exact.iter().map(Joint::from_f64).collect(),
             home32: Transform::from_f64(&home),
+            base: chain.base.clone(),
+            tip: chain.tip.clone(),
+            names: chain.joints.iter().map(|j| j.name.clone()).collect(),
         };
         robot.view().check().map_err(core_err)?;
         robot.view32().check().map_err(core_err)?;
@@ -95,6 +112,12 @@ impl Robot {
     #[getter]
     fn n_joints(&self) -> usize {
         self.joints.len()
+    }
+
+    /// The names of the moving joints, base to tip.
+    #[getter]
+    fn joint_names(&self) -> Vec<String> {
+        self.names.clone()
     }
 
     /// The joint kinds, base to tip ('revolute', 'continuous' or 'prismatic').
