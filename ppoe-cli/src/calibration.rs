@@ -1,5 +1,6 @@
-//! The calibration part of `ppoe fit`'s output: the `calibration` JSON object, the
-//! before/after residual table that opens the stderr summary, and the systematic tests.
+//! The calibration part of `ppoe fit`'s output: the before/after residual table that opens
+//! the stderr summary, and the systematic tests' lines; the `calibration` JSON object
+//! (below) is written by `ppoe_fit::json::calibration`.
 //!
 //! ```text
 //! "calibration": {
@@ -19,41 +20,8 @@
 //! (`ppoe::chain::fold_calibration`), which is what `--noise FILE` and `ppoe table
 //! --noise` use.
 
-use ppoe_fit::{Calibration, PoseEstimate, ResidualRms, SystematicTest};
-use serde_json::{json, Value};
+use ppoe_fit::{Calibration, PoseEstimate, ResidualRms};
 use std::io::Write;
-
-/// A systematic test as JSON.
-pub fn test_json(t: &SystematicTest) -> Value {
-    json!({
-        "tested": t.tested, "statistic": t.statistic, "dof": t.dof,
-        "p_value": t.p_value, "passes": t.passes(),
-    })
-}
-
-fn pose_json(p: &PoseEstimate) -> Value {
-    json!({"pose": p.pose.to_matrix4(), "cov": p.cov})
-}
-
-fn rms_json(r: &ResidualRms) -> Value {
-    json!({"position_mm": r.position_mm, "rotation_mrad": r.rotation_mrad})
-}
-
-/// The `calibration` object.
-pub fn to_json(c: &Calibration) -> Value {
-    json!({
-        "estimated": c.estimated.names(),
-        "measurement": if c.position_only { "position" } else { "pose" },
-        "base_in_tracker": pose_json(&c.base_in_tracker),
-        "marker_in_tip": pose_json(&c.marker_in_tip),
-        "home_correction": c.home_correction,
-        "home_correction_se": c.home_correction_se,
-        "residual_rms": {"before": rms_json(&c.rms_before), "after": rms_json(&c.rms_after)},
-        "undetermined": c.undetermined,
-        "null_directions": c.null_directions,
-        "rounds": c.rounds,
-    })
-}
 
 /// The residual RMS before and after calibration: the first thing a calibration
 /// engineer reads.

@@ -162,64 +162,11 @@ pub fn run(
     Ok(to_json(robot, &out, r))
 }
 
-/// The output JSON (see `ppoe fit --help`): the noise model, with each joint's offset and
-/// axis correction and the `calibration` object ([`crate::calibration`]).
+/// The output JSON (see `ppoe fit --help`): [`ppoe_fit::json::campaign`] with the chain's
+/// names.
 pub fn to_json(robot: &RobotChain, out: &CampaignFit, r: Option<MeasurementCov>) -> Value {
-    let f = &out.fit;
-    let c = &out.calibration;
-    let joints: Vec<Value> = f
-        .joints
-        .iter()
-        .enumerate()
-        .map(|(i, j)| {
-            json!({
-                "name": j.name, "cov": j.cov, "cov_se": j.cov_se,
-                "sigma2": j.sigma2, "sigma2_se": j.sigma2_se,
-                "sigma": j.sigma2.map(f64::sqrt),
-                "offset": c.offsets[i], "offset_se": c.offset_se[i],
-                "axis_correction": c.axis_corrections[i],
-                "axis_correction_se": c.axis_correction_se[i],
-            })
-        })
-        .collect();
-    let id = &f.identifiability;
-    let g = &f.goodness_of_fit;
-    let p = &f.prediction_error;
-    let r = match r {
-        None if c.position_only => json!([[0.0f64; 3]; 3].to_vec()),
-        None => json!([[0.0f64; 6]; 6].to_vec()),
-        Some(MeasurementCov::Pose(m)) => json!(m),
-        Some(MeasurementCov::Position(m)) => json!(m),
-    };
-    json!({
-        "model": f.model.name(),
-        "chain": {"base": robot.base, "tip": robot.tip, "joints": robot.joint_names()},
-        "joints": joints,
-        "log_likelihood": f.log_likelihood,
-        "samples": f.samples,
-        "converged": f.converged,
-        "iterations": f.iterations,
-        "measurement": if c.position_only { "position" } else { "pose" },
-        "measurement_cov": r,
-        "residual_floor": f.residual_floor.map(|[a, b]| json!({"rotation": a, "translation": b})),
-        "identifiability": {
-            "parameters": id.parameters, "determined": id.determined,
-            "determinable": id.determinable, "undetermined": id.undetermined,
-            "null_directions": id.null_directions,
-        },
-        "goodness_of_fit": {
-            "mean_mahalanobis": g.mean_mahalanobis, "beyond_99": g.beyond_99,
-            "ks_statistic": g.ks_statistic, "p_value": g.p_value, "fits": g.fits,
-            "mean_test": crate::calibration::test_json(&out.mean_test),
-            "calibration_test": out.calibration_test.as_ref().map(crate::calibration::test_json),
-        },
-        "prediction_error": {
-            "median": p.median, "worst": p.worst, "configurations": p.configurations,
-            "samples_for_5_percent": ppoe_fit::samples_for(f.samples, p.median, 0.05),
-        },
-        "calibration": crate::calibration::to_json(c),
-        "warnings": f.warnings,
-    })
+    let chain = json!({"base": robot.base, "tip": robot.tip, "joints": robot.joint_names()});
+    ppoe_fit::json::campaign(chain, out, r.as_ref())
 }
 
 /// The human-readable summary on stderr: the residuals before and after calibration,

@@ -70,6 +70,8 @@ mod calibration;
 mod design;
 mod error;
 mod fisher;
+#[cfg(feature = "json")]
+pub mod json;
 mod optimize;
 mod parallel;
 mod param;

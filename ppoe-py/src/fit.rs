@@ -1,7 +1,7 @@
 //! `ppoe.fit`: the noise fit of `ppoe fit` (ppoe-fit's `fit_campaign`) on numpy arrays.
-//! The result is built as the same JSON tree as the command's output (`to_json` below
-//! mirrors ppoe-cli's `fit::to_json` and `calibration::to_json` key for key; the package's
-//! test_fit.py compares the two on a dataset), then converted to Python: numeric arrays
+//! The result is the command's output JSON, built by the same function
+//! (`ppoe_fit::json::campaign`; the package's test_fit.py also compares the two on
+//! datasets), then converted to Python: numeric arrays
 //! become float64 numpy arrays of their shape (a `null` entry NaN), everything else dicts,
 //! lists, str, int, float, bool and None.
 
@@ -10,10 +10,7 @@ use crate::robot::Robot;
 use crate::PpoeError;
 use numpy::{PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use ppoe::chain::Joint;
-use ppoe_fit::{
-    Calibration, CampaignFit, CampaignSample, Estimate, Measurement, MeasurementCov, Model,
-    PoseEstimate, ResidualRms, SystematicTest,
-};
+use ppoe_fit::{CampaignSample, Estimate, Measurement, MeasurementCov, Model};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -170,93 +167,7 @@ fn fit<'py>(
     }
     let out = out.map_err(|e| PpoeError::new_err(e.to_string()))?;
     let chain = json!({"base": base, "tip": tip, "joints": names});
-    to_python(py, &to_json(chain, &out, r))
-}
-
-/// `ppoe fit`'s output JSON (ppoe-cli's `fit::to_json`, the chain given as its JSON).
-fn to_json(chain: Value, out: &CampaignFit, r: Option<MeasurementCov>) -> Value {
-    let f = &out.fit;
-    let c = &out.calibration;
-    let joints: Vec<Value> = f
-        .joints
-        .iter()
-        .enumerate()
-        .map(|(i, j)| {
-            json!({
-                "name": j.name, "cov": j.cov, "cov_se": j.cov_se,
-                "sigma2": j.sigma2, "sigma2_se": j.sigma2_se,
-                "sigma": j.sigma2.map(f64::sqrt),
-                "offset": c.offsets[i], "offset_se": c.offset_se[i],
-                "axis_correction": c.axis_corrections[i],
-                "axis_correction_se": c.axis_correction_se[i],
-            })
-        })
-        .collect();
-    let id = &f.identifiability;
-    let g = &f.goodness_of_fit;
-    let p = &f.prediction_error;
-    let r = match r {
-        None if c.position_only => json!([[0.0f64; 3]; 3].to_vec()),
-        None => json!([[0.0f64; 6]; 6].to_vec()),
-        Some(MeasurementCov::Pose(m)) => json!(m),
-        Some(MeasurementCov::Position(m)) => json!(m),
-    };
-    json!({
-        "model": f.model.name(),
-        "chain": chain,
-        "joints": joints,
-        "log_likelihood": f.log_likelihood,
-        "samples": f.samples,
-        "converged": f.converged,
-        "iterations": f.iterations,
-        "measurement": if c.position_only { "position" } else { "pose" },
-        "measurement_cov": r,
-        "residual_floor": f.residual_floor.map(|[a, b]| json!({"rotation": a, "translation": b})),
-        "identifiability": {
-            "parameters": id.parameters, "determined": id.determined,
-            "determinable": id.determinable, "undetermined": id.undetermined,
-            "null_directions": id.null_directions,
-        },
-        "goodness_of_fit": {
-            "mean_mahalanobis": g.mean_mahalanobis, "beyond_99": g.beyond_99,
-            "ks_statistic": g.ks_statistic, "p_value": g.p_value, "fits": g.fits,
-            "mean_test": test_json(&out.mean_test),
-            "calibration_test": out.calibration_test.as_ref().map(test_json),
-        },
-        "prediction_error": {
-            "median": p.median, "worst": p.worst, "configurations": p.configurations,
-            "samples_for_5_percent": ppoe_fit::samples_for(f.samples, p.median, 0.05),
-        },
-        "calibration": calibration_json(c),
-        "warnings": f.warnings,
-    })
-}
-
-/// A systematic test (ppoe-cli's `calibration::test_json`).
-fn test_json(t: &SystematicTest) -> Value {
-    json!({
-        "tested": t.tested, "statistic": t.statistic, "dof": t.dof,
-        "p_value": t.p_value, "passes": t.passes(),
-    })
-}
-
-/// The `calibration` object (ppoe-cli's `calibration::to_json`).
-fn calibration_json(c: &Calibration) -> Value {
-    let pose = |p: &PoseEstimate| json!({"pose": p.pose.to_matrix4(), "cov": p.cov});
-    let rms =
-        |r: &ResidualRms| json!({"position_mm": r.position_mm, "rotation_mrad": r.rotation_mrad});
-    json!({
-        "estimated": c.estimated.names(),
-        "measurement": if c.position_only { "position" } else { "pose" },
-        "base_in_tracker": pose(&c.base_in_tracker),
-        "marker_in_tip": pose(&c.marker_in_tip),
-        "home_correction": c.home_correction,
-        "home_correction_se": c.home_correction_se,
-        "residual_rms": {"before": rms(&c.rms_before), "after": rms(&c.rms_after)},
-        "undetermined": c.undetermined,
-        "null_directions": c.null_directions,
-        "rounds": c.rounds,
-    })
+    to_python(py, &ppoe_fit::json::campaign(chain, &out, r.as_ref()))
 }
 
 /// The shape of `v` if it is a non-empty array of numbers or nulls, or of such arrays

@@ -133,7 +133,9 @@ impl<'a, T: Real> Shared<'a, T> {
             .take(64)
             .enumerate()
             .filter(|(_, c)| !is_zero(c))
-            .fold(0u64, |m, (i, _)| m | u32::try_from(i).map_or(0, |b| 1u64 << (b & 63)));
+            .fold(0u64, |m, (i, _)| {
+                m | u32::try_from(i).map_or(0, |b| 1u64 << (b & 63))
+            });
         Self { covs, nonzero }
     }
 
@@ -141,7 +143,10 @@ impl<'a, T: Real> Shared<'a, T> {
     #[inline(always)]
     fn get(&self, i: usize) -> Option<&Mat6<T>> {
         let cov = self.covs.get(i)?;
-        let zero = match u32::try_from(i).ok().and_then(|b| self.nonzero.checked_shr(b)) {
+        let zero = match u32::try_from(i)
+            .ok()
+            .and_then(|b| self.nonzero.checked_shr(b))
+        {
             Some(bits) if i < 64 => bits & 1 == 0,
             _ => is_zero(cov),
         };
