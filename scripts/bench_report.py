@@ -48,14 +48,15 @@ def callgrind_ir(bin_, op, reps):
 
 def cmd_pinocchio_ir(fk_bench):
     """Instructions per forwardKinematics call of each robot: two whole-program runs of the
-    harness (1000 and 21000 calls of one batch) under callgrind, the difference / 20000, so
-    that model building and the check cancel out."""
+    harness (1000 and 21000 calls of one fixed-configuration batch, its "fixed" mode)
+    under callgrind, the difference / 20000, so that model building and the check cancel
+    out."""
     for robot in ("seed", "arm7"):
         tot = []
         for calls in (1000, 21000):
             out = "/tmp/ppoe-bench-pin-callgrind.%d.out" % os.getpid()
             subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out,
-                            fk_bench, "1", str(calls), robot],
+                            fk_bench, "1", str(calls), robot, "fixed"],
                            check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             with open(out) as f:
                 tot.append(next(int(l.split()[1]) for l in f

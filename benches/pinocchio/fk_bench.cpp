@@ -7,7 +7,8 @@
 // the exported placements), the tip pose oMi[n]·tip of every test configuration is
 // compared with ppoe's (exit status 1 if any element differs by more than 1e-12), then
 // BATCHES batches of CALLS calls on the first configuration are timed (arguments 1 and 2;
-// argument 3, if given, names the only robot to run), then the same number of batches
+// argument 3, if given, names the only robot to run; argument 4 "fixed" skips what
+// follows), then the same number of batches
 // cycling through 256 configurations uniform in [-1, 1] per joint (the batch benchmarks'
 // distribution, for the per-configuration comparison with ppoe's batch); two lines per robot:
 //   pinocchio robot=<name> joints=<n> ns_per_call=<median> min_ns=<f> batches=<b>
@@ -137,6 +138,9 @@ int main(int argc, char** argv) {
     }
     std::printf("pinocchio robot=%s joints=%d ns_per_call=%.2f min_ns=%.2f batches=%d calls=%d max_abs_err=%.3e\n",
                 t.name, t.n, median(ns), *std::min_element(ns.begin(), ns.end()), batches, calls, err);
+    // Argument 4 "fixed": the fixed-configuration batches only (bench_report.py's
+    // instruction count, whose difference of two runs must scale with one loop).
+    if (argc > 4 && std::string(argv[4]) == "fixed") continue;
     const double varied = time_configurations(model, data, t.n, batches, calls);
     std::printf("pinocchio_batch robot=%s joints=%d ns_per_config=%.2f configs=%d batches=%d\n", t.name,
                 t.n, varied, kConfigs, batches);

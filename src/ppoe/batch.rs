@@ -25,6 +25,12 @@
 //! Joints whose covariance is exactly zero in every lane are skipped, as in the single
 //! call; a zero covariance in some lanes only is transported there and adds exactly zero
 //! (for finite inputs).
+//!
+//! Why the chain's last joint is transported once per batch (tip frame, shared
+//! covariances): its congruence is constant (Ad(M⁻¹), or the identity in the
+//! pytransform3d convention), so its term is the same in every configuration; computed
+//! by the scalar operations each lane would run into zeros, it starts every group's sum
+//! with the same bits, one transport of n saved per configuration.
 
 use super::packed::{displacement, Poses};
 use super::schedule::{is_zero, lanes};
@@ -115,6 +121,10 @@ trait CovLanes<T: Real, const W: usize> {
     /// Writes joint i's covariances in the lanes of `group` to `c`; `false` (and `c`
     /// unspecified) when they are zero in every lane.
     fn lanes(&self, i: usize, group: &Group, c: &mut Acc<T, W>) -> bool;
+
+    /// Joint i's covariance if it is the same in every configuration: `Some(None)` when
+    /// it is zero, `None` when it may differ between configurations.
+    fn common(&self, i: usize) -> Option<Option<&Mat6<T>>>;
 }
 
 /// One covariance per joint, shared by every configuration, with which of the first 64
@@ -167,6 +177,11 @@ impl<T: Real, const W: usize> CovLanes<T, W> for Shared<'_, T> {
         }
         true
     }
+
+    #[inline(always)]
+    fn common(&self, i: usize) -> Option<Option<&Mat6<T>>> {
+        Some(self.get(i))
+    }
 }
 
 /// One covariance per joint and configuration, row-major (configurations × joints).
@@ -189,6 +204,11 @@ impl<T: Real, const W: usize> CovLanes<T, W> for PerConfig<'_, T> {
             }
         }
         true
+    }
+
+    #[inline(always)]
+    fn common(&self, _: usize) -> Option<Option<&Mat6<T>>> {
+        None
     }
 }
 
@@ -232,13 +252,20 @@ fn dense_lanes<T: Real, C: CovLanes<T, W>, const W: usize>(
     out: &mut [UncertainPose<T>],
 ) {
     let last = out.len().saturating_sub(1);
+    let first = hoisted_first::<T, C, W>(chain, covs, convention);
+    let start = first
+        .unwrap_or([[T::ZERO; 6]; 6])
+        .map(|row| row.map(Pack::splat));
     for (g, chunk) in out.chunks_mut(W).enumerate() {
         let group = Group { first: g * W, last };
-        let mut acc: Acc<T, W> = [[Pack::splat(T::ZERO); 6]; 6];
+        let mut acc: Acc<T, W> = start;
         let pose = if convention == Convention::Left {
             base_frame(chain, thetas, covs, &group, &mut acc)
         } else {
-            tip_frame(chain, thetas, covs, convention, &group, &mut acc)
+            let skip_first = first.is_some();
+            tip_frame(
+                chain, thetas, covs, convention, &group, skip_first, &mut acc,
+            )
         };
         if convention == Convention::Pytransform3d {
             acc = moved_to_tip(&chain.home, &acc);
@@ -251,6 +278,36 @@ fn dense_lanes<T: Real, C: CovLanes<T, W>, const W: usize>(
             };
         }
     }
+}
+
+/// The tip-frame sum's first term, computed once per batch: the loop's first joint (the
+/// chain's last) is transported by a constant congruence, Ad(M⁻¹) (Right) or the identity
+/// (Pytransform3d, whose M comes at the end), so where its covariance is shared the term
+/// is the same in every configuration. It is the scalar transport into zeros that every
+/// lane would run (the same operations, so the same bits); zeros where the covariance is
+/// zero (the lanes skip it). `None` where nothing is hoisted: the base frame (whose first
+/// congruence varies), covariances per configuration, no joints.
+fn hoisted_first<T: Real, C: CovLanes<T, W>, const W: usize>(
+    chain: &ChainView<'_, T>,
+    covs: &C,
+    convention: Convention,
+) -> Option<[[T; 6]; 6]> {
+    if convention == Convention::Left {
+        return None;
+    }
+    let last = chain.joints.len().checked_sub(1)?;
+    let cov = covs.common(last)?;
+    let mut acc = [[T::ZERO; 6]; 6];
+    if let Some(cov) = cov {
+        let g = if convention == Convention::Right {
+            chain.home
+        } else {
+            Transform::identity()
+        };
+        let c = Congruence::of_inverse(&g);
+        c.add_lower(cov, &mut acc);
+    }
+    Some(acc)
 }
 
 /// Pytransform3d's sums moved by Ad(M), `M` = `home`, in every lane: lane k is the one-lane
@@ -295,6 +352,7 @@ fn base_frame<T: Real, C: CovLanes<T, W>, const W: usize>(
 
 /// Tip frame, as the schedule's `tip_frame` per lane: Σ = Σᵢ Ad(Gᵢ⁻¹)·covᵢ·Ad(Gᵢ⁻¹)ᵀ,
 /// Gᵢ = Dᵢ₊₁…Dₙ·M (Right) or Dᵢ₊₁…Dₙ (Pytransform3d, whose sum the caller moves by Ad(M)).
+/// `skip_first`: the chain's last joint's term is already in `acc` ([`hoisted_first`]).
 /// Returns the poses.
 #[inline(always)]
 fn tip_frame<T: Real, C: CovLanes<T, W>, const W: usize>(
@@ -303,6 +361,7 @@ fn tip_frame<T: Real, C: CovLanes<T, W>, const W: usize>(
     covs: &C,
     convention: Convention,
     group: &Group,
+    skip_first: bool,
     acc: &mut Acc<T, W>,
 ) -> Poses<T, W> {
     let n = chain.joints.len();
@@ -317,7 +376,7 @@ fn tip_frame<T: Real, C: CovLanes<T, W>, const W: usize>(
         // The congruence by Ad(G⁻¹): Rᵀ and −p.
         let (r, q) = (g.rotation_transposed(), [-g.p[0], -g.p[1], -g.p[2]]);
         g = displacement(j, group.thetas(thetas, n, i, j, !right)).compose(&g);
-        if covs.lanes(i, group, &mut c) {
+        if !(skip_first && i + 1 == n) && covs.lanes(i, group, &mut c) {
             transport_lower(&r, &q, &c, acc);
         }
     }
