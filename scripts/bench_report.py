@@ -873,9 +873,8 @@ def render(d):
             if fk32 and fk64:
                 line += (" The rigid part alone: f32 %s µs, f64 %s µs; the rest (the transports):"
                          " f32 %s µs, f64 %s µs." % (us(fk32), us(fk64), us(s32 - fk32), us(s64 - fk64)))
-            line += (" Both scalars fill one SSE register with transports (f32: 4 lanes, f64: 2;"
-                     " the rigid part is scalar); gathering f32 covariance entries into"
-                     " a register takes more loads and shuffles than f64's.")
+            line += (" On x86 the single call runs f32 transports one at a time and f64 two"
+                     " side by side (src/ppoe/schedule.rs says why; the rigid part is scalar).")
         p(line)
     p("")
     # ---- firmware targets: kept from BENCHMARKS.md as it was (it names its own run)

@@ -4,8 +4,8 @@
 //! Why configurations in the lanes: the single-call schedule (`schedule.rs`) puts W
 //! *joints* side by side, which needs gathers of their congruences and covariances and
 //! leaves the forward kinematics (a chain of dependent products) and the sin/cos scalar.
-//! Here W *configurations* run side by side, W = the single call's lane count for the
-//! scalar and target (f64: 2, f32: 4 where 128-bit SIMD exists, else 1): every value of
+//! Here W *configurations* run side by side, W = as many as fill one 128-bit register
+//! (f64: 2, f32: 4 where 128-bit SIMD exists, else 1): every value of
 //! the computation, the sin/cos, the products of the forward kinematics and the
 //! transports, is a [`Pack`] of W independent lanes, built whole, with no gather except
 //! the joint values; a covariance shared by every configuration (a robot's noise model)
@@ -16,8 +16,8 @@
 //! the order of the chain) in the same order (`packed.rs` says how), so for finite
 //! inputs a configuration's result does not depend on its position in the batch, on the
 //! batch's length or on W. It equals [`ChainView::ppoe`] exactly where that call runs one
-//! lane (Cortex-M, RISC-V without vector units); on SIMD hosts the single call sums its
-//! W joint lanes separately, and the two differ by a few ε of ‖Σ‖ (the unit tests in
+//! lane (Cortex-M, RISC-V without vector units, f32 on x86); elsewhere the single call
+//! sums its joint lanes separately, and the two differ by a few ε of ‖Σ‖ (the unit tests in
 //! `batch_tests.rs` beside this file check both statements). A last group of fewer than
 //! W configurations fills its empty lanes with its last configuration, whose duplicates
 //! are computed and discarded.
@@ -33,7 +33,7 @@
 //! with the same bits, one transport of n saved per configuration.
 
 use super::packed::{displacement, Poses};
-use super::schedule::{is_zero, lanes};
+use super::schedule::{is_zero, simd_lanes};
 use super::{Convention, UncertainPose};
 use crate::error::Error;
 use crate::joint::Joint;
@@ -235,7 +235,7 @@ fn dense<T: Real, C: CovLanes<T, 4> + CovLanes<T, 2> + CovLanes<T, 1>>(
     convention: Convention,
     out: &mut [UncertainPose<T>],
 ) {
-    match const { lanes::<T>() } {
+    match const { simd_lanes::<T>() } {
         4 => dense_lanes::<T, C, 4>(chain, thetas, covs, convention, out),
         2 => dense_lanes::<T, C, 2>(chain, thetas, covs, convention, out),
         _ => dense_lanes::<T, C, 1>(chain, thetas, covs, convention, out),
@@ -395,7 +395,7 @@ fn rank1<T: Real>(
     convention: Convention,
     out: &mut [UncertainPose<T>],
 ) {
-    match const { lanes::<T>() } {
+    match const { simd_lanes::<T>() } {
         4 => rank1_lanes::<T, 4>(chain, thetas, sigma2, convention, out),
         2 => rank1_lanes::<T, 2>(chain, thetas, sigma2, convention, out),
         _ => rank1_lanes::<T, 1>(chain, thetas, sigma2, convention, out),
@@ -489,9 +489,10 @@ impl<T: Real> ChainView<'_, T> {
     /// Method: as [`ChainView::ppoe`], with the configurations rather than the joints in
     /// the lanes of SIMD registers (the module `batch.rs` of this package says why). The
     /// result of a configuration is bit-identical for finite inputs wherever it stands in
-    /// any batch; it equals a single [`ChainView::ppoe`] call exactly on one-lane targets
-    /// (Cortex-M, RISC-V) and within a few ε of ‖Σ‖ on SIMD hosts (the single call sums
-    /// its lanes in another order). Same accuracy as [`ChainView::ppoe`].
+    /// any batch; it equals a single [`ChainView::ppoe`] call exactly where that call
+    /// runs one lane (Cortex-M, RISC-V, f32 on x86) and within a few ε of ‖Σ‖ elsewhere
+    /// (the single call sums its lanes in another order). Same accuracy as
+    /// [`ChainView::ppoe`].
     ///
     /// ```
     /// use ppoe::chain::{screw_noise, Chain, Convention, Joint, JointKind, UncertainPose};

@@ -6,17 +6,20 @@
 //! transported covariances is only formed at the end), so W of them can run as one
 //! computation on [`Pack`]s of W scalars, which the optimiser maps to SIMD registers
 //! where the target has them (SSE2, NEON, wasm simd128): no shuffle is needed inside a
-//! transport. [`lanes`] chooses W per scalar and target: as many as fill one 128-bit
-//! vector where the target has them (f64: 2, f32: 4), else 1 (Cortex-M: a scalar FPU,
-//! where lanes would only add register pressure).
+//! transport. [`lanes`] chooses W per scalar and target: f64 as many as fill one
+//! 128-bit vector where the target has them (2), f32 one on x86 and four (a whole
+//! vector) on the other SIMD targets, else 1 (Cortex-M: a scalar FPU, where lanes would
+//! only add register pressure).
 //!
-//! Why f32 fills the whole register: two f32 lanes are computed in 4-lane registers
-//! whose other two lanes the program leaves undefined (leftovers of earlier code). On a
-//! core with a slow path for subnormals, the two-lane f32 PPOE ran 1.2-1.3x slower than
-//! f64, and 0.9x with flush-to-zero set; the one- and four-lane schedules, whose lanes
-//! hold the same values as the two defined lanes, ran at full speed. So the subnormals
-//! are in the undefined lanes (f32's narrow range underflows where f64's does not). Four
-//! lanes leave no lane undefined (BENCHMARKS.md, shipped with this package, gives the ratios).
+//! Why f32 runs one lane on x86: its four-lane groups gather every congruence and
+//! covariance entry of four joints into a register (four loads and three shuffles each,
+//! where f64's two lanes need two), and on x86-64 the one-lane f32 PPOE ran faster than
+//! the four-lane one although it executes more instructions (the `lanes_ratio`
+//! benchmark times every width; BENCHMARKS.md, shipped with this package, gives the
+//! figures). Never two f32 lanes: they are computed in 4-lane registers whose other two
+//! lanes the program leaves undefined (leftovers of earlier code), and on a core with a
+//! slow path for subnormals the two-lane f32 PPOE ran 1.2-1.3x slower than f64 (0.9x
+//! with flush-to-zero set): f32's narrow range underflows in the undefined lanes.
 //!
 //! Why groups are built as locals: the joints go in groups of W, and each group's W
 //! congruences and covariances are built as local values, then gathered into lanes
@@ -73,13 +76,23 @@ const SIMD128: bool = cfg!(any(
     target_feature = "simd128"
 ));
 
-/// How many transports the PPOE computes side by side for scalar `T` on this target (see
-/// the module doc): as many as fill one 128-bit SIMD register (f32: 4, f64: 2), else 1.
-pub(super) const fn lanes<T: Real>() -> usize {
+/// How many values of scalar `T` fill one 128-bit SIMD register on this target (f32: 4,
+/// f64: 2), 1 without SIMD: the batch PPOE's lane count (its lanes are configurations).
+pub(super) const fn simd_lanes<T: Real>() -> usize {
     match core::mem::size_of::<T>() {
         4 if SIMD128 => 4,
         8 if SIMD128 => 2,
         _ => 1,
+    }
+}
+
+/// How many transports the single-call PPOE computes side by side for scalar `T` on this
+/// target (see the module doc): [`simd_lanes`], except f32 on x86 (one lane).
+const fn lanes<T: Real>() -> usize {
+    const X86: bool = cfg!(any(target_arch = "x86", target_arch = "x86_64"));
+    match core::mem::size_of::<T>() {
+        4 if X86 => 1,
+        _ => simd_lanes::<T>(),
     }
 }
 
