@@ -14,15 +14,32 @@
 //! lanes 0 = the target's own choice, `ChainView::ppoe`). `LANES_RATIO_FTZ=1` sets
 //! flush-to-zero first (x86-64), which shows what subnormal values cost.
 
+#[path = "pinocchio/robots.rs"]
+mod robots;
+
 use ppoe::chain::{ChainView, Convention};
 use ppoe::Real;
 use ppoe_test_support::fixtures::{seed_case, synthetic_case, Case};
 use std::hint::black_box;
 use std::time::Instant;
 
+/// A case by name: the seed example (`seed`, two of its joints without covariance), the
+/// seed chain and the 7-joint arm with a full-rank covariance on every joint as the batch
+/// benchmarks of benches/ops.rs give them (`seed_dense`, `arm7`; the seed's joint values
+/// kept), or a synthetic chain of N joints (`chainN`).
 fn case<T: Real>(name: &str) -> Case<T> {
     match name {
         "seed" => seed_case(),
+        "seed_dense" => {
+            let (joints, home, thetas, _) = seed_case();
+            let covs = robots::arm7_covs(joints.len());
+            (joints, home, thetas, covs)
+        }
+        "arm7" => {
+            let (joints, home) = robots::core_chain(&robots::robot_chain(&robots::ARM7));
+            let covs = robots::arm7_covs(joints.len());
+            (joints, home, robots::arm7_thetas(), covs)
+        }
         n => synthetic_case(n.trim_start_matches("chain").parse().expect("chainN")),
     }
 }
@@ -63,7 +80,8 @@ fn median(v: &mut [f64]) -> f64 {
     v[v.len() / 2]
 }
 
-const CASES: [&str; 4] = ["seed", "chain6", "chain7", "chain8"];
+/// The marginal-cost lines below read `chain6`, `chain7`, `chain8` at indices 1, 2, 3.
+const CASES: [&str; 6] = ["seed", "chain6", "chain7", "chain8", "seed_dense", "arm7"];
 /// Lane widths timed: 0 = the target's choice (`ChainView::ppoe`).
 #[cfg(ppoe_bench_lanes)]
 const LANES: [usize; 4] = [0, 1, 2, 4];
@@ -91,7 +109,7 @@ fn ratios(rounds: usize, k: usize) {
             let mut r: Vec<f64> = a.iter().zip(b).map(|(x, y)| y / x).collect();
             let (mut a, mut b) = (a.clone(), b.clone());
             println!(
-                "{name:6} {l} | {:7.1} | {:7.1} | {:.3}",
+                "{name:10} {l} | {:7.1} | {:7.1} | {:.3}",
                 median(&mut a),
                 median(&mut b),
                 median(&mut r)

@@ -91,6 +91,14 @@ for l in sys.stdin:
     m=json.loads(l)
     if m.get('reason')=='compiler-artifact' and m['target']['name']=='ops' and m.get('executable'): print(m['executable'])" | tail -1)
 
+# --- 1a. f32/f64 interleaved in one process (benches/lanes_ratio.rs) -------------------------
+# Criterion times f32 and f64 seconds apart, so load from other work can favour either; this
+# alternates short f32 and f64 batches round by round and prints the median per-round ratio.
+echo "---- f32/f64 interleaved (cargo bench --bench lanes_ratio -- 201 2000)"
+CARGO_TARGET_DIR=$TD cargo bench -q --bench lanes_ratio -- 201 2000 >"$OUT/lanes_ratio.txt" ||
+  echo "error: cargo bench --bench lanes_ratio failed" >"$OUT/lanes_ratio.txt"
+cat "$OUT/lanes_ratio.txt"
+
 # --- 1b. the batch benchmarks built for x86-64-v3 (reported, not a target) -----------------
 # Same criterion arguments, the batch_ benchmarks only, their own target dir; only where the
 # CPU has the v3 features (AVX2, FMA, BMI2, MOVBE: the binary would not run otherwise). Rust

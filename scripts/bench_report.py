@@ -136,7 +136,13 @@ def selftest():
     assert kv_lines(pin, "versions")[0]["pin"] == "4.1.0"
     assert step_error("error: skipped: g++ is not installed") == "skipped: g++ is not installed"
     assert step_error(pin) is None
-    print("bench_report selftest: 6 passed, 0 failed")
+    lr = ("case lanes | f64 ns | f32 ns | median of per-round f32/f64\n"
+          "seed       0 |   376.0 |   374.1 | 0.996\n"
+          "f64: chain7 - chain6 = 50.1 ns, chain8 - chain7 = 49.0 ns, chain6 / 6 = 60.0 ns\n")
+    assert lanes_ratio_rows(lr) == {"seed": (376.0, 374.1, 0.996)}, lanes_ratio_rows(lr)
+    assert "| seed | 376.0 | 374.1 | 0.996 |" in render_lanes_ratio(lr)
+    assert "Not measured" in render_lanes_ratio("error: cargo bench --bench lanes_ratio failed")[2]
+    print("bench_report selftest: 7 passed, 0 failed")
 
 
 # ---------------------------------------------------------------- firmware
@@ -371,6 +377,42 @@ def render_batch(crit, pin_text):
     return L
 
 
+def lanes_ratio_rows(text):
+    """The `case lanes | f64 ns | f32 ns | ratio` lines of benches/lanes_ratio.rs, as
+    {case: (f64 ns, f32 ns, median per-round f32/f64)} (target lanes, 0, only)."""
+    rows = {}
+    for line in (text or "").splitlines():
+        parts = [x.strip() for x in line.split("|")]
+        head = parts[0].split()
+        if len(parts) != 4 or len(head) != 2 or head[1] != "0":
+            continue
+        try:
+            rows[head[0]] = tuple(float(x) for x in parts[1:])
+        except ValueError:
+            continue
+    return rows
+
+
+def render_lanes_ratio(text):
+    """The f32/f64 ratios of f32 and f64 batches interleaved in one process (step 1a)."""
+    L = ["### f32 against f64, interleaved in one process (benches/lanes_ratio.rs)", ""]
+    rows = lanes_ratio_rows(text)
+    if not rows:
+        return L + ["Not measured in this run (%s)." % (step_error(text) or "no result"), ""]
+    L.append("`cargo bench --bench lanes_ratio -- 201 2000`: 201 rounds, each timing 2000 single")
+    L.append("`ChainView::ppoe` calls in f64 then in f32 for every case, so that load from other work")
+    L.append("falls on both alike; ns per call are medians over rounds, the ratio is the median of the")
+    L.append("rounds' own f32/f64 ratios (below 1: f32 faster). `seed_dense` and `arm7` have the batch")
+    L.append("table's dense covariances; `seed` the seed example's; `chainN` a synthetic N-joint chain.")
+    L.append("")
+    L.append("| case | f64 ns | f32 ns | f32 / f64 (median of rounds) |")
+    L.append("|---|---:|---:|---:|")
+    for name, (a, b, r) in rows.items():
+        L.append("| %s | %.1f | %.1f | %.3f |" % (name, a, b, r))
+    L.append("")
+    return L
+
+
 def render_batch_v3(crit, d):
     """The batch benchmarks of a -C target-cpu=x86-64-v3 build (step 1b) beside the default
     target's, ns per configuration."""
@@ -595,6 +637,7 @@ def render(d):
     p("")
     L.extend(render_robots(crit, pin_text, (cg or {}).get("ir_per_call", {})))
     L.extend(render_batch(crit, pin_text))
+    L.extend(render_lanes_ratio(read_text(os.path.join(d, "lanes_ratio.txt"))))
     L.extend(render_batch_v3(crit, d))
     L.extend(render_python_batch(load(os.path.join(d, "python_batch.json")), m))
     L.extend(render_rank1(crit))
@@ -809,8 +852,9 @@ def render(d):
           " tolerances; `git log` has the before/after figures): accumulation in the tip frame from"
           " the tip backwards (no transport after the loop, lever arms from each joint to the tip),"
           " a shear-first structured transport accumulated into one triangle (no 6×6 temporaries),"
-          " independent transports packed into SIMD lanes (the private lane width, `lanes` in src/ppoe/schedule.rs: one"
-          " 128-bit register on SSE2/NEON, 2 f64 or 4 f32 lanes), the joints taken in groups whose congruences and covariances are"
+          " independent transports packed into SIMD lanes (the private lane width, `lanes` in"
+          " src/ppoe/schedule.rs: one 128-bit register on SSE2/NEON, 2 f64 lanes, 4 f32 lanes except"
+          " on x86, where f32 runs one), the joints taken in groups whose congruences and covariances are"
           " gathered into lanes straight from registers (a queue in memory made the gathers wait on"
           " store forwarding), per-joint displacement constants computed once (`JointConstants`:"
           " ppoe-build's tables carry them; a joint's displacement is then one sin/cos, 19"
@@ -820,13 +864,15 @@ def render(d):
           " product so that their sin/cos latencies overlap; a branch-free quadrant selection in"
           " the f32 sin/cos (slower: the quadrant branch predicts well); the serial product on"
           " rows packed as 4-lane vectors (slower: packing costs more than it saves); gathering"
-          " only the covariance entries the transport reads (no change). Two f32 lanes, the former"
-          " choice, left the other half of each 4-lane SSE register unset: on AMD EPYC the"
-          " garbage there underflowed into subnormals, so f32 now fills the register."
-          " `RUSTFLAGS=\"--cfg ppoe_bench_lanes\" cargo bench --bench lanes_ratio` times every lane width in one process, and"
-          " `LANES_RATIO_FTZ=1` (flush-to-zero) shows what subnormals cost: when the two-lane"
-          " schedule was replaced, on the AMD EPYC of this report, with flush-to-zero its"
-          " f32 PPOE took 222 ns instead of 307 ns.")
+          " only the covariance entries the transport reads (no change); two f32 lanes (computed in"
+          " 4-lane registers whose other lanes were undefined and underflowed into subnormals)."
+          " f32 single calls run one lane on x86: four lanes cost more in gathers and transposes"
+          " than they save. LLVM's SLP vectoriser still packs parts of that one-lane f32 code into"
+          " partial 4-lane SSE operations whose unused lanes can hold subnormals."
+          " `RUSTFLAGS=\"--cfg ppoe_bench_lanes\" cargo bench --bench lanes_ratio` times every lane"
+          " width of both scalars interleaved in one process (its own section of this report);"
+          " `LANES_RATIO_FTZ=1` (flush-to-zero) and `RUSTFLAGS=\"-C llvm-args=-vectorize-slp=false\"`"
+          " show what the subnormals and the partial vectors cost.")
         nn64, nn32 = c("ppoe_seed/ours_joint_new/f64"), c("ppoe_seed/ours_joint_new/f32")
         if nn64:
             p("- Joints built with `Joint::new` (a `const fn`, which cannot compute the displacement"
