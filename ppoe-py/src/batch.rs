@@ -78,11 +78,22 @@ const PER_THREAD: usize = 2048;
 /// How many threads a batch of `count` configurations runs on: `threads` (0: every core
 /// the operating system offers), at most one per [`PER_THREAD`] configurations.
 pub(crate) fn thread_count(count: usize, threads: usize) -> usize {
+    let most = count / PER_THREAD;
+    if most <= 1 {
+        return 1;
+    }
     let want = match threads {
-        0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+        0 => cores(),
         t => t,
     };
-    want.min(count / PER_THREAD).max(1)
+    want.min(most).max(1)
+}
+
+/// The cores the operating system offers this process, asked once: on Linux the answer
+/// reads the cgroup's quota files, which costs far more than a small batch.
+fn cores() -> usize {
+    static CORES: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+    *CORES.get_or_init(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
 }
 
 /// The PPOE of every configuration, on `threads` threads ([`thread_count`]) each given a
@@ -102,7 +113,8 @@ fn ppoe_all<T: Real>(
 ) -> Result<(Vec<T>, Vec<T>), PyErr> {
     let per = mat6s(covs);
     let (mut poses, mut out_covs) = (vec![T::ZERO; 16 * count], vec![T::ZERO; 36 * count]);
-    let size = count.div_ceil(thread_count(count, threads)).max(1);
+    let threads = thread_count(count, threads);
+    let size = count.div_ceil(threads).max(1);
     let job = Batch {
         view,
         thetas,
@@ -110,6 +122,11 @@ fn ppoe_all<T: Real>(
         shared,
         convention,
     };
+    if threads == 1 {
+        // A thread's start costs more than a small batch: one range runs on the caller's.
+        job.range(0, &mut poses, &mut out_covs)?;
+        return Ok((poses, out_covs));
+    }
     let results: Vec<Result<(), PyErr>> = std::thread::scope(|s| {
         let ranges = poses
             .chunks_mut(16 * size)
