@@ -91,7 +91,7 @@ def test_batch_equals_loop_exactly(robots, conv):
 @pytest.mark.parametrize("conv", ["pytransform3d", "right"])
 def test_threads_give_the_same_bits(robots, conv):
     # 5000 configurations: two threads of 2500 (one per 2048 at most), three with threads=3
-    # capped to two; per-configuration covariances exercise the other core call.
+    # (or any larger int) capped to two; per-configuration covariances exercise the other core call.
     r = robots[0][conv]
     rng = np.random.default_rng(5)
     thetas = rng.uniform(-2, 2, (5000, 6))
@@ -99,7 +99,7 @@ def test_threads_give_the_same_bits(robots, conv):
     per = np.repeat(shared[np.newaxis], 5000, axis=0)
     one = r.probabilistic_forward_kinematics(thetas, shared, threads=1)
     for covs in (shared, per):
-        for threads in (None, 2, 3):
+        for threads in (None, 2, 3, 2**70):
             got = r.probabilistic_forward_kinematics(thetas, covs, threads=threads)
             np.testing.assert_array_equal(got[0], one[0])
             np.testing.assert_array_equal(got[1], one[1])

@@ -160,6 +160,9 @@ class ProbabilisticRobotKinematics:
             threads = 0
         elif isinstance(threads, bool) or not isinstance(threads, int) or threads < 1:
             raise ValueError(f"threads: expected a positive int or None, got {threads!r}")
+        # Beyond one thread per 2048 configurations the count changes nothing; capped so
+        # that any Python int fits the native call's integer.
+        threads = min(threads, 1 << 31)
         ppoe = self._robot.ppoe_f32 if self._f32 else self._robot.ppoe
         poses, out = ppoe(batch, c, self.convention, threads)
         return (poses[0], out[0]) if single else (poses, out)
