@@ -13,6 +13,11 @@ Per configuration, median of repeats:
   test_data/reference/generate_ppoe.py's ``ProbabilisticChain``), timed on the first 200
   configurations (10,000 would take several seconds per repeat).
 
+``interleaved_speedup`` (and ``_one_thread``): the ratio example / ppoe batch measured in
+15 rounds, each timing the ppoe batch (median of 3 calls) right before the example on its
+200 configurations, so that load from other work on a shared machine falls on both alike;
+the median, min and max of the rounds' ratios.
+
 The configurations are uniform in [-1, 1]^6, the covariances the seed example's. All in
 the ``pytransform3d`` convention so that the work is the example's; ``right`` costs the
 same in ppoe. Prints one JSON object. Run with the wheel and pytransform3d 3.17.0
@@ -41,6 +46,7 @@ ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
 JOINTS = [f"joint{i}" for i in range(1, 7)]
 N = 10_000
 N_REFERENCE = 200
+ROUNDS = 15
 
 
 def per_config(fn, count, repeats):
@@ -50,6 +56,17 @@ def per_config(fn, count, repeats):
         fn()
         times.append((time.perf_counter() - t0) / count)
     return statistics.median(times)
+
+
+def interleaved(rounds, ours, reference, count, reference_count):
+    """Per-round ratios reference / ours (per configuration), the two timed back to back in
+    every round so that load from other work falls on both alike: median, min, max."""
+    ratios = []
+    for _ in range(rounds):
+        a = per_config(ours, count, 3)
+        b = per_config(reference, reference_count, 1)
+        ratios.append(b / a)
+    return {"median": statistics.median(ratios), "min": min(ratios), "max": max(ratios)}
 
 
 def seed_covs():
@@ -78,6 +95,10 @@ def main():
     baseline = load(os.path.join("scripts", "bench_pytransform3d.py"), "bench_pytransform3d")
     chain = baseline.seed_chain()
     example = baseline.probabilistic_forward_kinematics
+
+    def reference():
+        return [example(chain, t, covs) for t in thetas[:N_REFERENCE]]
+
     result = {
         "machine": platform.machine(),
         "load_average": os.getloadavg(),
@@ -88,9 +109,13 @@ def main():
         "ppoe_batch_one_thread_us": 1e6 * per_config(lambda: pfk(thetas, covs, threads=1), N, 21),
         "ppoe_batch_per_config_covs_us": 1e6 * per_config(lambda: pfk(thetas, per), N, 11),
         "ppoe_loop_us": 1e6 * per_config(lambda: [pfk(t, covs) for t in thetas], N, 3),
-        "pytransform3d_example_us": 1e6
-        * per_config(lambda: [example(chain, t, covs) for t in thetas[:N_REFERENCE]], N_REFERENCE, 3),
+        "pytransform3d_example_us": 1e6 * per_config(reference, N_REFERENCE, 3),
     }
+    result["interleaved_rounds"] = ROUNDS
+    result["interleaved_speedup"] = interleaved(ROUNDS, lambda: pfk(thetas, covs), reference, N, N_REFERENCE)
+    result["interleaved_speedup_one_thread"] = interleaved(
+        ROUNDS, lambda: pfk(thetas, covs, threads=1), reference, N, N_REFERENCE
+    )
     result["speedup_batch_vs_example"] = result["pytransform3d_example_us"] / result["ppoe_batch_us"]
     result["speedup_batch_vs_loop"] = result["ppoe_loop_us"] / result["ppoe_batch_us"]
     print(json.dumps(result, indent=2))

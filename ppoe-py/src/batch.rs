@@ -8,6 +8,7 @@ use crate::{core_err, PpoeError};
 use numpy::{Element, PyArrayDyn, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use ppoe::chain::{ChainView, Convention, UncertainPose};
 use ppoe::{Error, Real, Transform};
+use pyo3::exceptions::PyMemoryError;
 use pyo3::prelude::*;
 
 /// An array of the chain's scalar.
@@ -28,7 +29,8 @@ pub(crate) fn forward_kinematics<'py, T: Real + Element + Send + Sync>(
     let th = elements(thetas, "thetas", &[usize::MAX, n])?;
     let count = thetas.shape()[0];
     let out = py.detach(|| -> Result<Vec<T>, PyErr> {
-        let mut out = Vec::with_capacity(16 * count);
+        let mut out = zeroed::<T>(16, count)?;
+        out.clear();
         for i in 0..count {
             let t = view.forward_kinematics(&th[i * n..(i + 1) * n]);
             push_transform(&mut out, &t.map_err(|e| batch_err(i, e))?);
@@ -63,6 +65,20 @@ pub(crate) fn ppoe<'py, T: Real + Element + Send + Sync>(
         array(py, poses, &[count, 4, 4])?,
         array(py, out_covs, &[count, 6, 6])?,
     ))
+}
+
+/// `per·count` zeros, or a `MemoryError` where they do not fit (the global allocator
+/// would abort the interpreter instead of failing the call). The reservation only probes:
+/// `vec!` then takes zeroed pages from the system (calloc) without writing them, which
+/// a reserved vector filled with zeros would.
+fn zeroed<T: Real>(per: usize, count: usize) -> Result<Vec<T>, PyErr> {
+    let too_big =
+        || PyMemoryError::new_err(format!("no memory for {count} configurations' results"));
+    let len = per.checked_mul(count).ok_or_else(too_big)?;
+    Vec::<T>::new()
+        .try_reserve_exact(len)
+        .map_err(|_| too_big())?;
+    Ok(vec![T::ZERO; len])
 }
 
 /// Configurations per call of the core: the results of one call sit in a buffer (98 KB in
@@ -112,7 +128,7 @@ fn ppoe_all<T: Real>(
     threads: usize,
 ) -> Result<(Vec<T>, Vec<T>), PyErr> {
     let per = mat6s(covs);
-    let (mut poses, mut out_covs) = (vec![T::ZERO; 16 * count], vec![T::ZERO; 36 * count]);
+    let (mut poses, mut out_covs) = (zeroed(16, count)?, zeroed(36, count)?);
     let threads = thread_count(count, threads);
     let size = count.div_ceil(threads).max(1);
     let job = Batch {

@@ -115,3 +115,30 @@ def test_mimic_joints_are_refused_not_ignored():
         urdf = f.read()
     with pytest.raises(ppoe.PpoeError, match="mimic joints"):
         ppoe.ProbabilisticRobotKinematics(urdf, "left_tip", "base", None)
+
+
+
+def _memory():
+    """RAM plus swap in bytes, and whether Linux refuses one allocation beyond them
+    outright (heuristic overcommit, mode 0); (0, False) where that cannot be read."""
+    try:
+        with open("/proc/sys/vm/overcommit_memory") as f:
+            mode = f.read().strip()
+        with open("/proc/meminfo") as f:
+            info = {line.split(":")[0]: int(line.split()[1]) * 1024 for line in f}
+    except (OSError, ValueError, IndexError):
+        return 0, False
+    return info.get("MemTotal", 0) + info.get("SwapTotal", 0), mode == "0"
+
+
+def test_results_that_do_not_fit_are_a_memory_error(robot, seed_covs):
+    # Joint values the machine holds, results it cannot (52 float64 per configuration
+    # against 6, twice the memory there is): a MemoryError, not an aborted interpreter.
+    # np.zeros maps zero pages, so the input costs little memory.
+    memory, refuses = _memory()
+    if not refuses:
+        pytest.skip("this system's overcommit setting may grant the allocation")
+    count = 2 * memory // (52 * 8) + 1
+    thetas = np.zeros((count, 6))
+    with pytest.raises(MemoryError, match="configurations' results"):
+        robot.probabilistic_forward_kinematics(thetas, seed_covs, threads=1)
