@@ -113,10 +113,10 @@ fn cores() -> usize {
 }
 
 /// The PPOE of every configuration, on `threads` threads ([`thread_count`]) each given a
-/// contiguous range of configurations ([`ppoe_range`]). A configuration's result does not
-/// depend on the batch it is in, so the results are the same bits whatever the thread
-/// count; the error reported is that of the first failing range. Writes 16 + 36 values
-/// per configuration.
+/// contiguous range of configurations ([`Batch::range`]), the first on the caller's. A
+/// configuration's result does not depend on the batch it is in, so the results are the
+/// same bits whatever the thread count; the error reported is that of the first failing
+/// range. Writes 16 + 36 values per configuration.
 #[allow(clippy::too_many_arguments)]
 fn ppoe_all<T: Real>(
     view: ChainView<'_, T>,
@@ -138,26 +138,25 @@ fn ppoe_all<T: Real>(
         shared,
         convention,
     };
-    if threads == 1 {
-        // A thread's start costs more than a small batch: one range runs on the caller's.
-        job.range(0, &mut poses, &mut out_covs)?;
-        return Ok((poses, out_covs));
-    }
+    let mut ranges = poses
+        .chunks_mut(16 * size)
+        .zip(out_covs.chunks_mut(36 * size));
+    // The first range runs on the caller's thread, whose core is awake and holds the
+    // inputs in its caches; only the others start threads (none for one range).
+    let Some((p0, c0)) = ranges.next() else {
+        return Ok((Vec::new(), Vec::new()));
+    };
     let results: Vec<Result<(), PyErr>> = std::thread::scope(|s| {
-        let ranges = poses
-            .chunks_mut(16 * size)
-            .zip(out_covs.chunks_mut(36 * size));
         let handles: Vec<_> = ranges
             .enumerate()
-            .map(|(k, (p, c))| s.spawn(move || job.range(k * size, p, c)))
+            .map(|(k, (p, c))| s.spawn(move || job.range((k + 1) * size, p, c)))
             .collect();
-        handles
-            .into_iter()
-            .map(|h| {
-                h.join()
-                    .unwrap_or_else(|_| Err(PpoeError::new_err("a batch thread panicked")))
-            })
-            .collect()
+        let first = job.range(0, p0, c0);
+        let rest = handles.into_iter().map(|h| {
+            h.join()
+                .unwrap_or_else(|_| Err(PpoeError::new_err("a batch thread panicked")))
+        });
+        core::iter::once(first).chain(rest).collect()
     });
     results.into_iter().collect::<Result<(), PyErr>>()?;
     Ok((poses, out_covs))
