@@ -117,6 +117,11 @@ const TASKS: &[Task] = &[
                firmware counts; 10-20 min; needs a quiet machine)",
     },
     Task {
+        name: "bench-report-selftest",
+        command: &["python3", "scripts/bench_report.py", "selftest"],
+        help: "the bench report's parsers and renderers on made-up lines (a CI step;                no benchmark is run)",
+    },
+    Task {
         name: "accuracy",
         command: &["bash", "scripts/accuracy.sh"],
         help: "regenerate ACCURACY.md (Monte Carlo and f32-vs-f64 tables; --samples N)",
