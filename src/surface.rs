@@ -107,6 +107,16 @@ pub fn unit_sphere_point<T: Real>(n_steps: usize, i: usize, j: usize) -> Vec3<T>
 /// kept, without allocation, in the slots of the last row (as `(cos θ, sin θ, 0)`), which
 /// is filled last: each of its slots is read just before it is overwritten. `f` has a
 /// single call site, so that it inlines into the loop.
+/// `Ok(n)` if the first `n` points of `out` are finite, else [`Error::Overflow`]: the
+/// grids are computed from finite inputs, so a point that is not finite is an overflow
+/// inside (a huge covariance or factor, a pose far from the origin), never a point to draw.
+fn finite_points<T: Real>(n: usize, out: &[Vec3<T>]) -> Result<usize, Error> {
+    match out.get(..n) {
+        Some(points) if points.iter().all(Vec3::is_finite) => Ok(n),
+        _ => Err(Error::Overflow),
+    }
+}
+
 #[inline]
 fn fill_grid<T: Real>(n_steps: usize, out: &mut [Vec3<T>], mut f: impl FnMut(&Vec3<T>) -> Vec3<T>) {
     let den = T::from_usize(n_steps.max(2) - 1);
@@ -247,7 +257,8 @@ pub fn to_ellipsoid<T: Real>(
 /// # Errors
 ///
 /// [`Error::NonFinite`] (any input), [`Error::GridSize`] for
-/// `n_steps < 2`, [`Error::BufferTooSmall`] if `out.len() < n_steps²`.
+/// `n_steps < 2`, [`Error::BufferTooSmall`] if `out.len() < n_steps²`, [`Error::Overflow`]
+/// if a point is not finite (the points are written).
 pub fn to_projected_ellipsoid<T: Real>(
     mean: &Transform<T>,
     cov: &Mat6<T>,
@@ -304,7 +315,7 @@ pub fn to_projected_ellipsoid_from_eigen<T: Real>(
         // R(E)ᵀ·p(E) = Exp(ω)ᵀ·J(ω)·v = J(−ω)·v: the translation of Exp(−ω, v).
         transform3(mean, &se3::exp_translation(&mul3(&basis, u)))
     });
-    Ok(n)
+    finite_points(n, out)
 }
 
 /// `m·x` for a matrix of three columns, each element summed as `m₀x₀ + m₁x₁ + m₂x₂`
@@ -470,14 +481,15 @@ impl<T: Real> LiftSurface<T> {
     /// # Errors
     ///
     /// [`Error::NonFinite`] for non-finite k, [`Error::GridSize`] for
-    /// `n_steps < 2`, [`Error::BufferTooSmall`] if `out.len() < n_steps²`.
+    /// `n_steps < 2`, [`Error::BufferTooSmall`] if `out.len() < n_steps²`,
+    /// [`Error::Overflow`] if a point is not finite (the points are written).
     pub fn grid(&self, k: T, n_steps: usize, out: &mut [Vec3<T>]) -> Result<usize, Error> {
         if !k.is_finite() {
             return Err(Error::NonFinite);
         }
         let n = grid_len(n_steps, out.len())?;
         fill_grid(n_steps, out, |u| self.point(&u.scale(k)));
-        Ok(n)
+        finite_points(n, out)
     }
 }
 
@@ -539,7 +551,7 @@ pub fn marginal_surface<T: Real>(
     let n = grid_len(n_steps, out.len())?;
     let a = mean.rotation * SymmetricEigen::new(&symmetric_part(&cov.block(1, 1)))?.sqrt();
     fill_grid(n_steps, out, |u| a.mul_vec(&u.scale(k)) + mean.translation);
-    Ok(n)
+    finite_points(n, out)
 }
 
 /// The surfaces [`surface_grid`] can draw.
@@ -695,5 +707,27 @@ mod tests {
         assert_eq!(chi2_3_radius(1.0_f64), None);
         assert_eq!(chi2_3_radius(-0.1_f64), None);
         assert_eq!(chi2_3_radius(0.0_f64), Some(0.0));
+    }
+
+    #[test]
+    fn grids_that_overflow_are_errors() {
+        // Finite inputs whose points are not: radii k·√λ (or factor·√λ) beyond the
+        // largest float.
+        fn check<T: Real>() {
+            let (pose, cov) = (
+                Transform::<T>::identity(),
+                Mat6::<T>::identity() * T::lit(4.0),
+            );
+            let mut out = [Vec3::zeros(); 16];
+            for kind in [Surface::Lift, Surface::Marginal, Surface::Pytransform3d] {
+                let got = surface_grid(kind, &pose, &cov, T::max_value(), 4, &mut out);
+                assert_eq!(got, Err(Error::Overflow), "{kind:?}");
+                assert_eq!(surface_grid(kind, &pose, &cov, T::ONE, 4, &mut out), Ok(16));
+            }
+            let got = to_projected_ellipsoid(&pose, &cov, T::max_value(), 4, &mut out);
+            assert_eq!(got, Err(Error::Overflow));
+        }
+        check::<f64>();
+        check::<f32>();
     }
 }

@@ -168,9 +168,14 @@ pub fn run<T: Fz>(inp: &EigenInput) {
                 );
             }
         } else if let Ok(n) = r {
-            // Outside the valid domain: no NaN unless the input forces it (huge values
-            // may overflow to ±∞); never more points than asked.
+            // Outside the valid domain huge values may overflow, which is
+            // `Err(Overflow)`: an `Ok` grid is finite, and never more points than asked.
             assert_eq!(n, needed);
+            assert!(
+                buf[..n].iter().all(|p| p.is_finite()),
+                "{what} ({}): Ok with a point that is not finite",
+                T::NAME
+            );
         }
     }
     let mean3: Vec3<T> = mean.translation;
