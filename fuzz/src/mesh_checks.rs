@@ -23,7 +23,10 @@ pub fn run(data: &[u8]) {
     let scale = [s, SCALES[(a >> 4) as usize % SCALES.len()], 1.0];
     let limits = match b {
         0 => Limits::default(),
-        n => Limits { max_triangles: *n as usize, ..Limits::default() },
+        n => Limits {
+            max_triangles: *n as usize,
+            ..Limits::default()
+        },
     };
     let mesh = if a & 0x80 != 0 {
         collada(file, scale, &limits)
@@ -44,8 +47,14 @@ pub fn run(data: &[u8]) {
         assert!(p.iter().all(|x| x.is_finite()), "vertex not finite: {p:?}");
     }
     for t in &mesh.triangles {
-        assert!(t.iter().all(|&i| (i as usize) < mesh.vertices.len()), "bad index {t:?}");
-        assert!(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], "degenerate {t:?}");
+        assert!(
+            t.iter().all(|&i| (i as usize) < mesh.vertices.len()),
+            "bad index {t:?}"
+        );
+        assert!(
+            t[0] != t[1] && t[1] != t[2] && t[0] != t[2],
+            "degenerate {t:?}"
+        );
     }
 }
 
@@ -55,7 +64,10 @@ fn collada(file: &[u8], scale: [f64; 3], limits: &Limits) -> Option<meshfile::Me
     let dae = ppoe_build::collada::parse(file).ok()?;
     assert!(!dae.triangles.is_empty(), "COLLADA Ok without triangles");
     for t in &dae.triangles {
-        assert!(t.iter().all(|&i| (i as usize) < dae.vertices.len()), "bad index {t:?}");
+        assert!(
+            t.iter().all(|&i| (i as usize) < dae.vertices.len()),
+            "bad index {t:?}"
+        );
     }
     assert!(dae.triangles.len() <= ppoe_build::collada::MAX_TRIANGLES);
     meshfile::from_triangles(dae.vertices, dae.triangles, scale, limits).ok()
