@@ -134,6 +134,9 @@ fn chi2_3_radius(p: f64) -> PyResult<f64> {
 
 /// The probability that a 3D standard normal vector has norm at most k.
 #[pyfunction]
-fn chi2_3_probability(k: f64) -> f64 {
-    surface::chi2_3_probability(k)
+fn chi2_3_probability(k: f64) -> PyResult<f64> {
+    if k.is_nan() {
+        return Err(PyValueError::new_err("k must be a number, got NaN"));
+    }
+    Ok(surface::chi2_3_probability(k))
 }

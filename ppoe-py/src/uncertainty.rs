@@ -1,7 +1,7 @@
 //! Concatenation, inversion and fusion of uncertain transforms
 //! (`ppoe::uncertainty`), in pytransform3d's argument order.
 
-use crate::convert::{elements, mat6s, matrix, matrix_array, transform, transform_array, Pair};
+use crate::convert::{elements, finite_pair, mat6s, matrix, transform, Pair};
 use crate::core_err;
 use numpy::{PyArrayDyn, PyReadonlyArrayDyn};
 use ppoe::uncertainty::{self, IterationOptions, Order};
@@ -44,7 +44,7 @@ fn concat_globally<'py>(
         &matrix(elements(&cov_b2c, "cov_B2C", &[6, 6])?, 0),
         order(order_name)?,
     );
-    Ok((transform_array(py, &t)?, matrix_array(py, &c)?))
+    finite_pair(py, &t, &c)
 }
 
 /// `ppoe::uncertainty::concat_locally` (right perturbations).
@@ -62,7 +62,7 @@ fn concat_locally<'py>(
         &matrix(elements(&cov_a, "cov_A", &[6, 6])?, 0),
         &matrix(elements(&cov_b, "cov_B", &[6, 6])?, 0),
     );
-    Ok((transform_array(py, &t)?, matrix_array(py, &c)?))
+    finite_pair(py, &t, &c)
 }
 
 /// `ppoe::uncertainty::invert` (left perturbation).
@@ -76,7 +76,7 @@ fn invert<'py>(
         &transform(elements(&mean, "mean", &[4, 4])?, 0),
         &matrix(elements(&cov, "cov", &[6, 6])?, 0),
     );
-    Ok((transform_array(py, &t)?, matrix_array(py, &c)?))
+    finite_pair(py, &t, &c)
 }
 
 /// `ppoe::uncertainty::pose_fusion`: (mean, cov, cost V, iterations, converged).
@@ -99,11 +99,6 @@ fn pose_fusion<'py>(
     let means: Vec<_> = (0..k).map(|i| transform(m, 16 * i)).collect();
     let fused = uncertainty::pose_fusion(&means, &mat6s(c), &IterationOptions::default())
         .map_err(core_err)?;
-    Ok((
-        transform_array(py, &fused.mean)?,
-        matrix_array(py, &fused.cov)?,
-        fused.cost,
-        fused.iterations,
-        fused.converged,
-    ))
+    let (mean, cov) = finite_pair(py, &fused.mean, &fused.cov)?;
+    Ok((mean, cov, fused.cost, fused.iterations, fused.converged))
 }

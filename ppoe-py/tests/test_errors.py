@@ -142,3 +142,31 @@ def test_results_that_do_not_fit_are_a_memory_error(robot, seed_covs):
     thetas = np.zeros((count, 6))
     with pytest.raises(MemoryError, match="configurations' results"):
         robot.probabilistic_forward_kinematics(thetas, seed_covs, threads=1)
+
+
+def _far():
+    """A rigid transform 1e308 m from the origin: finite, but products with it overflow."""
+    t = np.eye(4)
+    t[:3, 3] = [1e308, 1e308, 0.0]
+    return t
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: pu.invert_uncertain_transform(_far(), np.eye(6)),
+        lambda: pu.concat_globally_uncertain_transforms(_far(), np.eye(6), _far(), np.eye(6)),
+        lambda: pu.concat_locally_uncertain_transforms(_far(), _far(), np.eye(6), np.eye(6)),
+        lambda: pu.to_projected_ellipsoid(np.eye(4), np.eye(6) * 1e300, 1e300, 5),
+    ],
+)
+def test_results_that_overflow_are_errors(call):
+    # Finite inputs whose results are not (pytransform3d hands back inf and NaN here).
+    with pytest.raises(ppoe.PpoeError, match="not finite"):
+        call()
+
+
+def test_chi2_probability_of_nan_is_an_error():
+    with pytest.raises(ValueError, match="NaN"):
+        ppoe.chi2_3_probability(float("nan"))
+    assert ppoe.chi2_3_probability(float("inf")) == 1.0

@@ -55,5 +55,11 @@ def chi2_3_radius(probability):
 
 
 def chi2_3_probability(k):
-    """The probability that a 3D standard normal vector has norm at most ``k``."""
+    """The probability that a 3D standard normal vector has norm at most ``k``.
+
+    Raises
+    ------
+    ValueError
+        For NaN.
+    """
     return _ppoe.chi2_3_probability(float(k))
