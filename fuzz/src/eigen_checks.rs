@@ -105,28 +105,10 @@ fn check_eigen<T: Fz, const N: usize>(a: &Matrix<T, N, N>) {
     }
 }
 
-/// The generic body of the `eigen` target (run for f32 and f64).
-pub fn run<T: Fz>(inp: &EigenInput) {
-    let m6: Mat6<T> = inp.m.get();
-    let v3: [T; 9] = inp.m3.map(|x| x.get());
-    let m3: Mat3<T> = if inp.m3_raw {
-        Mat3::from_rows([
-            [v3[0], v3[1], v3[2]],
-            [v3[3], v3[4], v3[5]],
-            [v3[6], v3[7], v3[8]],
-        ])
-    } else {
-        mirror::<T, 3>(&v3)
-    };
-    check_eigen(&m6);
-    check_eigen(&m3);
-    check_eigen(&m6.block(0, 0));
-    check_eigen(&m6.block(1, 1));
-
-    let mean: Transform<T> = inp.mean.get();
-    let k: T = inp.k.get();
-    let n_steps = (inp.n_steps % 13) as usize;
-    let mut buf = vec![Vec3::<T>::zeros(); (inp.buf % 170) as usize];
+/// The three grids of `mean`, `m6` at radius `k`: the errors their arguments call for,
+/// `n_steps²` finite points on valid input, and no `Ok` with a point that is not finite.
+fn check_surfaces<T: Fz>(mean: &Transform<T>, m6: &Mat6<T>, k: T, n_steps: usize, buf_len: usize) {
+    let mut buf = vec![Vec3::<T>::zeros(); buf_len];
     let needed = n_steps * n_steps;
     let grid_ok = n_steps >= 2 && needed <= buf.len();
 
@@ -134,8 +116,8 @@ pub fn run<T: Fz>(inp: &EigenInput) {
     // check_covariance with bounded entries, |k| ≤ 100.
     let valid = mean.check().is_ok()
         && vec_amax(&mean.translation).to_f64() <= T::BOUND
-        && check_covariance(&m6).is_ok()
-        && mat_amax(&m6).to_f64() <= T::BOUND * T::BOUND
+        && check_covariance(m6).is_ok()
+        && mat_amax(m6).to_f64() <= T::BOUND * T::BOUND
         && k.abs().to_f64() <= 100.0;
 
     type Surf<T> = fn(&Transform<T>, &Mat6<T>, T, usize, &mut [Vec3<T>]) -> Result<usize, Error>;
@@ -146,8 +128,8 @@ pub fn run<T: Fz>(inp: &EigenInput) {
     ];
     for (what, f) in surfaces {
         buf.iter_mut().for_each(|p| *p = Vec3::zeros());
-        let r = f(&mean, &m6, k, n_steps, &mut buf);
-        let inputs_finite = transform_finite(&mean) && m6.is_finite() && k.is_finite();
+        let r = f(mean, m6, k, n_steps, &mut buf);
+        let inputs_finite = transform_finite(mean) && m6.is_finite() && k.is_finite();
         if !grid_ok || !inputs_finite {
             assert!(r.is_err(), "{what} ({}): Ok for bad arguments", T::NAME);
         }
@@ -178,6 +160,35 @@ pub fn run<T: Fz>(inp: &EigenInput) {
             );
         }
     }
+}
+
+/// The generic body of the `eigen` target (run for f32 and f64).
+pub fn run<T: Fz>(inp: &EigenInput) {
+    let m6: Mat6<T> = inp.m.get();
+    let v3: [T; 9] = inp.m3.map(|x| x.get());
+    let m3: Mat3<T> = if inp.m3_raw {
+        Mat3::from_rows([
+            [v3[0], v3[1], v3[2]],
+            [v3[3], v3[4], v3[5]],
+            [v3[6], v3[7], v3[8]],
+        ])
+    } else {
+        mirror::<T, 3>(&v3)
+    };
+    check_eigen(&m6);
+    check_eigen(&m3);
+    check_eigen(&m6.block(0, 0));
+    check_eigen(&m6.block(1, 1));
+
+    let mean: Transform<T> = inp.mean.get();
+    let k: T = inp.k.get();
+    check_surfaces(
+        &mean,
+        &m6,
+        k,
+        (inp.n_steps % 13) as usize,
+        (inp.buf % 170) as usize,
+    );
     let mean3: Vec3<T> = mean.translation;
     match surface::to_ellipsoid(&mean3, &m3) {
         Ok((t, radii)) => {
