@@ -96,17 +96,6 @@ pub fn unit_sphere_point<T: Real>(n_steps: usize, i: usize, j: usize) -> Vec3<T>
     Vec3::new(sp * ct, sp * st, cp)
 }
 
-/// Fills `out` with `f(unit_sphere_point(n_steps, i, j))`, row-major: `out[i·n + j]` for
-/// `i, j < n_steps`, and nothing else. The callers have checked `n_steps ≥ 2` and
-/// `out.len() ≥ n_steps²` ([`grid_len`]); otherwise the first `min(out.len(), n_steps²)`
-/// points are written, in the same order (never a panic).
-///
-/// Method: the row's sin/cos φ is computed once per row and the column's sin/cos θ once
-/// per column (2n trigonometric calls instead of n² + n), with the same expressions as
-/// [`unit_sphere_point`], so the points are bit-identical to it. The column values are
-/// kept, without allocation, in the slots of the last row (as `(cos θ, sin θ, 0)`), which
-/// is filled last: each of its slots is read just before it is overwritten. `f` has a
-/// single call site, so that it inlines into the loop.
 /// `Ok(n)` if the first `n` points of `out` are finite, else [`Error::Overflow`]: the
 /// grids are computed from finite inputs, so a point that is not finite is an overflow
 /// inside (a huge covariance or factor, a pose far from the origin), never a point to draw.
@@ -129,6 +118,17 @@ fn finite_points<T: Real>(n: usize, out: &[Vec3<T>]) -> Result<usize, Error> {
     }
 }
 
+/// Fills `out` with `f(unit_sphere_point(n_steps, i, j))`, row-major: `out[i·n + j]` for
+/// `i, j < n_steps`, and nothing else. The callers have checked `n_steps ≥ 2` and
+/// `out.len() ≥ n_steps²` ([`grid_len`]); otherwise the first `min(out.len(), n_steps²)`
+/// points are written, in the same order (never a panic).
+///
+/// Method: the row's sin/cos φ is computed once per row and the column's sin/cos θ once
+/// per column (2n trigonometric calls instead of n² + n), with the same expressions as
+/// [`unit_sphere_point`], so the points are bit-identical to it. The column values are
+/// kept, without allocation, in the slots of the last row (as `(cos θ, sin θ, 0)`), which
+/// is filled last: each of its slots is read just before it is overwritten. `f` has a
+/// single call site, so that it inlines into the loop.
 #[inline]
 fn fill_grid<T: Real>(n_steps: usize, out: &mut [Vec3<T>], mut f: impl FnMut(&Vec3<T>) -> Vec3<T>) {
     let den = T::from_usize(n_steps.max(2) - 1);

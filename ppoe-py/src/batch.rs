@@ -29,8 +29,7 @@ pub(crate) fn forward_kinematics<'py, T: Real + Element + Send + Sync>(
     let th = elements(thetas, "thetas", &[usize::MAX, n])?;
     let count = thetas.shape()[0];
     let out = py.detach(|| -> Result<Vec<T>, PyErr> {
-        let mut out = zeroed::<T>(16, count)?;
-        out.clear();
+        let mut out = reserved::<T>(16, count)?;
         for i in 0..count {
             let t = view.forward_kinematics(&th[i * n..(i + 1) * n]);
             push_transform(&mut out, &t.map_err(|e| batch_err(i, e))?);
@@ -67,18 +66,23 @@ pub(crate) fn ppoe<'py, T: Real + Element + Send + Sync>(
     ))
 }
 
-/// `per·count` zeros, or a `MemoryError` where they do not fit (the global allocator
-/// would abort the interpreter instead of failing the call). The reservation only probes:
-/// `vec!` then takes zeroed pages from the system (calloc) without writing them, which
-/// a reserved vector filled with zeros would.
-fn zeroed<T: Real>(per: usize, count: usize) -> Result<Vec<T>, PyErr> {
+/// An empty vector with room for `per·count` values, or a `MemoryError` where they do
+/// not fit (the global allocator would abort the interpreter instead of failing the call).
+fn reserved<T>(per: usize, count: usize) -> Result<Vec<T>, PyErr> {
     let too_big =
         || PyMemoryError::new_err(format!("no memory for {count} configurations' results"));
     let len = per.checked_mul(count).ok_or_else(too_big)?;
-    Vec::<T>::new()
-        .try_reserve_exact(len)
-        .map_err(|_| too_big())?;
-    Ok(vec![T::ZERO; len])
+    let mut v = Vec::new();
+    v.try_reserve_exact(len).map_err(|_| too_big())?;
+    Ok(v)
+}
+
+/// `per·count` zeros, or a `MemoryError` ([`reserved`]). The reservation only probes:
+/// `vec!` then takes zeroed pages from the system (calloc) without writing them, which
+/// filling the reserved vector with zeros would.
+fn zeroed<T: Real>(per: usize, count: usize) -> Result<Vec<T>, PyErr> {
+    drop(reserved::<T>(per, count)?);
+    Ok(vec![T::ZERO; per * count])
 }
 
 /// Configurations per call of the core: the results of one call sit in a buffer (98 KB in

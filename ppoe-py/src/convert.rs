@@ -102,29 +102,17 @@ pub(crate) fn array<'py, T: Element>(
     PyArray1::from_vec(py, data).reshape(shape.to_vec())
 }
 
-/// `Ok` if every value is finite, else the core's overflow error: a result computed from
-/// finite inputs (the wrappers reject the others) is never handed back as ±∞ or NaN.
-pub(crate) fn finite<'a>(values: impl IntoIterator<Item = &'a f64>) -> PyResult<()> {
-    if values.into_iter().all(|x| x.is_finite()) {
-        Ok(())
-    } else {
-        Err(crate::core_err(ppoe::Error::Overflow))
-    }
-}
-
-/// A transform and a covariance as (4, 4) and (6, 6) arrays, if both are finite
-/// ([`finite`]).
+/// A transform and a covariance as (4, 4) and (6, 6) arrays, or the core's overflow error
+/// if either is not finite: a result computed from finite inputs (the wrappers reject the
+/// others) is never handed back as ±∞ or NaN.
 pub(crate) fn finite_pair<'py>(
     py: Python<'py>,
     t: &Transform<f64>,
     cov: &Mat6<f64>,
 ) -> PyResult<Pair<'py>> {
-    finite(
-        t.to_matrix4()
-            .iter()
-            .flatten()
-            .chain(cov.0.iter().flatten()),
-    )?;
+    if !(t.rotation.is_finite() && t.translation.is_finite() && cov.is_finite()) {
+        return Err(crate::core_err(ppoe::Error::Overflow));
+    }
     Ok((transform_array(py, t)?, matrix_array(py, cov)?))
 }
 

@@ -119,7 +119,8 @@ const TASKS: &[Task] = &[
     Task {
         name: "bench-report-selftest",
         command: &["python3", "scripts/bench_report.py", "selftest"],
-        help: "the bench report's parsers and renderers on made-up lines (a CI step;                no benchmark is run)",
+        help: "the bench report's parsers and renderers on made-up lines (a CI step; \
+               no benchmark is run)",
     },
     Task {
         name: "accuracy",
