@@ -200,10 +200,9 @@ fn constants_displacement<T: Real, const W: usize>(
 ) -> Poses<T, W> {
     let sp = Pack::splat;
     let t = theta * sp(k.scale);
-    // Whole packs from the W results (not lane by lane into zeroed packs, whose vector
-    // reads would wait on the scalar writes).
-    let sc: [(T, T); W] = core::array::from_fn(|l| get(&t, l).sin_cos_r());
-    let (s, c) = (Pack(sc.map(|x| x.0)), Pack(sc.map(|x| x.1)));
+    // The scalar's own way of filling whole packs (`Sealed::sin_cos_lanes` says why).
+    let (s, c) = T::sin_cos_lanes(t.0);
+    let (s, c) = (Pack(s), Pack(c));
     let one = sp(T::ONE);
     let omc = one - c;
     let ([x, y, z], [dx, dy, dz], [xy, xz, yz]) = (k.axis, k.axis_sq, k.axis_prod);

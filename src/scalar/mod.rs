@@ -26,9 +26,38 @@ use num_traits::{Float, FloatConst};
 mod sincos;
 
 mod sealed {
-    pub trait Sealed {}
-    impl Sealed for f32 {}
-    impl Sealed for f64 {}
+    /// Seals [`Real`](super::Real), and holds the per-type kernels the crate picks by scalar
+    /// without making them public API.
+    pub trait Sealed: Sized + Copy {
+        /// `(sin, cos)` of every lane, as [`Real::sin_cos_r`](super::Real::sin_cos_r) of
+        /// each, for the batch PPOE's packs (the same bits). f64 writes the lanes in a
+        /// loop: its inlined sin/cos is large enough that `array::from_fn` around it stays
+        /// a call, which clobbers every SSE register of the caller. f32 builds the arrays
+        /// with `from_fn`, which stays inlined there; its lanes written one by one into an
+        /// array would make the vector reads after it wait on the scalar writes.
+        fn sin_cos_lanes<const W: usize>(x: [Self; W]) -> ([Self; W], [Self; W]);
+    }
+
+    impl Sealed for f64 {
+        #[inline(always)]
+        fn sin_cos_lanes<const W: usize>(x: [f64; W]) -> ([f64; W], [f64; W]) {
+            let (mut s, mut c) = ([0.0; W], [0.0; W]);
+            for ((s, c), x) in s.iter_mut().zip(c.iter_mut()).zip(x) {
+                (*s, *c) = super::sincos::sin_cos_f64(x);
+            }
+            (s, c)
+        }
+    }
+
+    impl Sealed for f32 {
+        #[inline(always)]
+        fn sin_cos_lanes<const W: usize>(x: [f32; W]) -> ([f32; W], [f32; W]) {
+            let sc: [(f32, f32); W] = core::array::from_fn(|l| {
+                super::sincos::sin_cos_f32(x.get(l).copied().unwrap_or(0.0))
+            });
+            (sc.map(|v| v.0), sc.map(|v| v.1))
+        }
+    }
 }
 
 /// A floating-point scalar: `f32` or `f64`.
@@ -115,8 +144,8 @@ impl Real for f64 {
     }
 
     /// libm's `sincos` (FreeBSD msun; one shared range reduction; < 1 ulp), bit for bit:
-    /// its |x| ≤ π/4 branch (every joint angle of a typical arm) is inlined, the rest
-    /// stays a call. A call clobbers every SSE register, so the caller would spill its
+    /// its branches for |x| ≲ 5π/4 (a revolute joint's angles within ±225°, except
+    /// within 2⁻²⁰ relative of ±π/2 and ±π) are inlined, the rest stays a call. A call clobbers every SSE register, so the caller would spill its
     /// live values around each joint's sin/cos; inlined, the polynomials also overlap the
     /// neighbouring joints' work.
     #[inline(always)]

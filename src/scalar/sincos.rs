@@ -1,9 +1,10 @@
-//! Sine and cosine for the two scalars: libm's `sincos` for f64 with its common branch
+//! Sine and cosine for the two scalars: libm's `sincos` for f64 with its common branches
 //! inlined, and an f32-native implementation (no f64 arithmetic, which Cortex-M4F cores
 //! emulate in software).
 
-/// `libm::sincos` bit for bit (see [`Real::sin_cos_r`](crate::Real::sin_cos_r) for `f64`): the |x| ≤ π/4 branch
-/// inlined, the rest a call.
+/// `libm::sincos` bit for bit (see [`Real::sin_cos_r`](crate::Real::sin_cos_r) for `f64`): its
+/// branches for |x| ≲ 5π/4 inlined (every angle of a revolute joint within ±225°), the
+/// rest a call.
 #[inline(always)]
 pub(super) fn sin_cos_f64(x: f64) -> (f64, f64) {
     // libm's own tests on the high word: |x| ≲ π/4 goes to the kernels, and below
@@ -15,29 +16,78 @@ pub(super) fn sin_cos_f64(x: f64) -> (f64, f64) {
         } else {
             sin_cos_f64_kernel(x)
         }
+    } else if ix <= 0x400f_6a7a && (ix & 0xf_ffff) != 0x9_21fb {
+        sin_cos_f64_near(x, ix)
     } else {
         sin_cos_f64_libm(x)
     }
 }
 
+/// msun's `__rem_pio2` for π/4 ≲ |x| ≲ 5π/4 away from π/2 and π (libm's `rem_pio2` with
+/// its high word `ix` in (0x3fe921fb, 0x400f6a7a], low 20 bits not 0x921fb; the cases
+/// near π/2 and π, where one round of reduction cancels, stay with libm):
+/// x = k·π/2 + y₀ + y₁ with k = ±1 below 3π/4, ±2 above, in one round of the two-part π/2 (85 bits),
+/// then the kernels with the tail y₁ and k's quadrant. The same operations as libm's
+/// branches (x − (−a) is x + a exactly, and k·PIO2_1, k·PIO2_1T are exact for |k| ≤ 2),
+/// so the same bits (tested); error < 1 ulp.
+#[inline(always)]
+fn sin_cos_f64_near(x: f64, ix: u32) -> (f64, f64) {
+    const PIO2_1: f64 = f64::from_bits(0x3ff9_21fb_5440_0000); // first 33 bits of π/2
+    const PIO2_1T: f64 = f64::from_bits(0x3dd0_b461_1a62_6331); // π/2 − PIO2_1
+    let k = if ix <= 0x4002_d97c { 1.0 } else { 2.0 };
+    let k = if x.is_sign_negative() { -k } else { k };
+    let z = x - k * PIO2_1;
+    let y0 = z - k * PIO2_1T;
+    let y1 = (z - y0) - k * PIO2_1T;
+    let (s, c) = sin_cos_f64_kernel_tail(y0, y1);
+    // k mod 4: 1, 2, 2 (k = −2) or 3 (k = −1).
+    match k as i32 & 3 {
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    }
+}
+
+/// msun's `__kernel_sin(x, y, 1)` and `__kernel_cos(x, y)` for a reduced argument x + y
+/// (|x + y| ≲ π/4 + ε): [`sin_cos_f64_kernel`]'s polynomials with the tail's terms, in
+/// libm's operation order.
+#[inline(always)]
+fn sin_cos_f64_kernel_tail(x: f64, y: f64) -> (f64, f64) {
+    let z = x * x;
+    let w = z * z;
+    let rs = S2 + z * (S3 + z * S4) + z * w * (S5 + z * S6);
+    let v = z * x;
+    let s = x - ((z * (0.5 * y - v * rs) - y) - v * S1);
+    let rc = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
+    let hz = 0.5 * z;
+    let one_m = 1.0 - hz;
+    let c = one_m + (((1.0 - one_m) - hz) + (z * rc - x * y));
+    (s, c)
+}
+
+/// msun's sin and cos polynomial coefficients (libm's `k_sin` and `k_cos`).
+#[allow(clippy::excessive_precision)] // digit for digit as published
+mod msun {
+    pub(super) const S1: f64 = -1.666_666_666_666_663_243_48e-1;
+    pub(super) const S2: f64 = 8.333_333_333_322_489_461_24e-3;
+    pub(super) const S3: f64 = -1.984_126_982_985_794_931_34e-4;
+    pub(super) const S4: f64 = 2.755_731_370_707_006_767_89e-6;
+    pub(super) const S5: f64 = -2.505_076_025_340_686_341_95e-8;
+    pub(super) const S6: f64 = 1.589_690_995_211_550_102_21e-10;
+    pub(super) const C1: f64 = 4.166_666_666_666_660_190_37e-2;
+    pub(super) const C2: f64 = -1.388_888_888_887_410_957_49e-3;
+    pub(super) const C3: f64 = 2.480_158_728_947_672_941_78e-5;
+    pub(super) const C4: f64 = -2.755_731_435_139_066_330_35e-7;
+    pub(super) const C5: f64 = 2.087_572_321_298_174_827_90e-9;
+    pub(super) const C6: f64 = -1.135_964_755_778_819_482_65e-11;
+}
+use msun::{C1, C2, C3, C4, C5, C6, S1, S2, S3, S4, S5, S6};
+
 /// msun's `__kernel_sin(x, 0, 0)` and `__kernel_cos(x, 0)` (Sun Microsystems, 1993, as in
 /// libm's `k_sin`/`k_cos`): the same coefficients and operation order, so the same bits
 /// as `libm::sincos` for 2⁻²⁷·√2 ≤ |x| ≤ π/4 (tested); error < 1 ulp there.
 #[inline(always)]
-#[allow(clippy::excessive_precision)] // msun's coefficients, digit for digit as published
 fn sin_cos_f64_kernel(x: f64) -> (f64, f64) {
-    const S1: f64 = -1.666_666_666_666_663_243_48e-1;
-    const S2: f64 = 8.333_333_333_322_489_461_24e-3;
-    const S3: f64 = -1.984_126_982_985_794_931_34e-4;
-    const S4: f64 = 2.755_731_370_707_006_767_89e-6;
-    const S5: f64 = -2.505_076_025_340_686_341_95e-8;
-    const S6: f64 = 1.589_690_995_211_550_102_21e-10;
-    const C1: f64 = 4.166_666_666_666_660_190_37e-2;
-    const C2: f64 = -1.388_888_888_887_410_957_49e-3;
-    const C3: f64 = 2.480_158_728_947_672_941_78e-5;
-    const C4: f64 = -2.755_731_435_139_066_330_35e-7;
-    const C5: f64 = 2.087_572_321_298_174_827_90e-9;
-    const C6: f64 = -1.135_964_755_778_819_482_65e-11;
     let z = x * x;
     let w = z * z;
     let rs = S2 + z * (S3 + z * S4) + z * w * (S5 + z * S6);
@@ -49,7 +99,8 @@ fn sin_cos_f64_kernel(x: f64) -> (f64, f64) {
     (s, c)
 }
 
-/// `libm::sincos` out of line: the arguments beyond π/4 and the non-finite ones of
+/// `libm::sincos` out of line: the arguments beyond 5π/4, near π/2 and π (see
+/// [`sin_cos_f64_near`]) and the non-finite ones of
 /// [`Real::sin_cos_r`](crate::Real::sin_cos_r) for `f64`.
 #[inline(never)]
 fn sin_cos_f64_libm(x: f64) -> (f64, f64) {
@@ -297,23 +348,37 @@ mod tests {
 
     #[test]
     fn f64_sin_cos_is_libm_bit_for_bit() {
-        // Across the inlined kernel's range, its edges (2^-27·√2 and π/4, where the branch
-        // switches to the libm call) and beyond, both signs.
+        // Across the inlined branches' ranges, their edges (2^-27·√2, π/4, 3π/4 where k
+        // goes from 1 to 2, 5π/4 where the libm call takes over) and the high words near
+        // π/2 and π that libm reduces in more rounds, every ulp around each edge, and
+        // beyond, both signs.
         let edges = [
-            f64::from_bits(0x3e46_a09e_0000_0000),
-            f64::from_bits(0x3e46_a09d_ffff_ffff),
-            f64::from_bits(0x3fe9_21fb_ffff_ffff),
-            f64::from_bits(0x3fe9_21fc_0000_0000),
-            core::f64::consts::FRAC_PI_4,
+            0x3e46_a09e_0000_0000u64,
+            0x3fe9_21fc_0000_0000,
+            0x4002_d97d_0000_0000,
+            0x400f_6a7b_0000_0000,
+            0x3ff9_21fb_0000_0000,
+            0x3ff9_21fc_0000_0000,
+            0x4009_21fb_0000_0000,
+            0x4009_21fc_0000_0000,
+            core::f64::consts::FRAC_PI_4.to_bits(),
+            core::f64::consts::FRAC_PI_2.to_bits(),
+            core::f64::consts::PI.to_bits(),
+            (3.0 * core::f64::consts::FRAC_PI_4).to_bits(),
+            (5.0 * core::f64::consts::FRAC_PI_4).to_bits(),
+        ]
+        .into_iter()
+        .flat_map(|b| (b - 2_000..b + 2_000).map(f64::from_bits));
+        let special = [
             0.0,
             1e-300,
             f64::MIN_POSITIVE / 4.0,
             f64::INFINITY,
             f64::NAN,
         ];
-        let sweep = (0..=400_000).map(|i| (i as f64 - 200_000.0) * 5e-6);
+        let sweep = (0..=2_000_000).map(|i| (i as f64 - 1_000_000.0) * 5e-6);
         let logs = (0..2_000).map(|i| 10f64.powf(-10.0 + i as f64 * 0.005));
-        for x in edges.into_iter().chain(sweep).chain(logs) {
+        for x in edges.chain(special).chain(sweep).chain(logs) {
             for x in [x, -x] {
                 let (s, c) = x.sin_cos_r();
                 let (ls, lc) = libm::sincos(x);
