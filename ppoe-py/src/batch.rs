@@ -203,13 +203,14 @@ impl<T: Real> Batch<'_, T> {
                 Some(i) => batch_err(at + i, e.error),
                 None => core_err(e.error),
             })?;
-            for (r, (p, c)) in out.iter().zip(pdst.chunks_mut(16).zip(cdst.chunks_mut(36))) {
-                for (d, x) in p.iter_mut().zip(r.pose.to_matrix4().iter().flatten()) {
-                    *d = *x;
-                }
-                for (d, x) in c.iter_mut().zip(r.cov.0.iter().flatten()) {
-                    *d = *x;
-                }
+            // Whole rows of 16 and 36 values (a flattening iterator copied them one
+            // bounds-checked element at a time).
+            let rows = out
+                .iter()
+                .zip(pdst.chunks_exact_mut(16).zip(cdst.chunks_exact_mut(36)));
+            for (r, (p, c)) in rows {
+                p.copy_from_slice(r.pose.to_matrix4().as_flattened());
+                c.copy_from_slice(r.cov.0.as_flattened());
             }
         }
         Ok(())
