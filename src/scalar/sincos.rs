@@ -2,9 +2,20 @@
 //! inlined, and an f32-native implementation (no f64 arithmetic, which Cortex-M4F cores
 //! emulate in software).
 
+/// Whether libm's branches for π/4 < |x| ≲ 5π/4 are inlined: where floats live in 128-bit
+/// SIMD registers (SSE2, NEON, wasm simd128), every one of which a call clobbers in the
+/// PPOE's loops. Elsewhere (Cortex-M, RISC-V: f64 in software or in scalar registers)
+/// they stay in the call, whose cost is small there against a copy of the reduction and
+/// its kernels in every caller (the firmware budgets measure the code and the stack).
+const INLINE_NEAR: bool = cfg!(any(
+    target_feature = "sse2",
+    target_feature = "neon",
+    target_feature = "simd128"
+));
+
 /// `libm::sincos` bit for bit (see [`Real::sin_cos_r`](crate::Real::sin_cos_r) for `f64`): its
-/// branches for |x| ≲ 5π/4 inlined (every angle of a revolute joint within ±225°), the
-/// rest a call.
+/// branches for |x| ≤ π/4 inlined, and for |x| ≲ 5π/4 (a revolute joint's angles within
+/// ±225°) where [`INLINE_NEAR`]; the rest a call.
 #[inline(always)]
 pub(super) fn sin_cos_f64(x: f64) -> (f64, f64) {
     // libm's own tests on the high word: |x| ≲ π/4 goes to the kernels, and below
@@ -16,7 +27,7 @@ pub(super) fn sin_cos_f64(x: f64) -> (f64, f64) {
         } else {
             sin_cos_f64_kernel(x)
         }
-    } else if ix <= 0x400f_6a7a && (ix & 0xf_ffff) != 0x9_21fb {
+    } else if INLINE_NEAR && ix <= 0x400f_6a7a && (ix & 0xf_ffff) != 0x9_21fb {
         sin_cos_f64_near(x, ix)
     } else {
         sin_cos_f64_libm(x)
