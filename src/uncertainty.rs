@@ -25,8 +25,10 @@ use crate::linalg::{Mat3, Mat6, Matrix, SymmetricEigen};
 use crate::scalar::Real;
 use crate::se3::Transform;
 
+mod checked;
 mod estimate;
 mod fusion;
+pub use checked::{concat_globally_checked, concat_locally_checked, invert_checked};
 pub use estimate::{
     estimate_gaussian_rotation, estimate_gaussian_transform, frechet_mean, Estimate,
     IterationOptions, LieGroup,
@@ -82,7 +84,8 @@ pub fn left_to_right<T: Real>(mean: &Transform<T>, cov: &Mat6<T>) -> Mat6<T> {
 ///
 /// Guarantees: the result is exactly symmetric. It is positive semi-definite for PSD
 /// inputs with [`Order::Second`] and [`Order::FourthPsd`], but **not** with
-/// [`Order::Fourth`] (see there).
+/// [`Order::Fourth`] (see there). Unchecked: [`concat_globally_checked`] validates the
+/// inputs and the result.
 ///
 /// ```
 /// use ppoe::uncertainty::{concat_globally, Order};
@@ -206,6 +209,7 @@ pub(crate) fn fourth_order_terms<T: Real>(s1: &Mat6<T>, s2: &Mat6<T>) -> Mat6<T>
 /// Corresponds to pytransform3d's `concat_locally_uncertain_transforms(mean_A2B,
 /// mean_B2C, cov_A, cov_B)` (same argument order; note it differs from
 /// [`concat_globally`]). This is the building block of the PPOE (Meyer et al. 2022).
+/// Unchecked: [`concat_locally_checked`] validates the inputs and the result.
 ///
 /// ```
 /// use ppoe::uncertainty::concat_locally;
@@ -231,7 +235,8 @@ pub fn concat_locally<T: Real>(
 /// Inverts an uncertain transform with **left (global)** perturbation: returns
 /// `(T̄⁻¹, Ad(T̄⁻¹)·Σ·Ad(T̄⁻¹)ᵀ)`, the covariance of the left perturbation of the inverse.
 ///
-/// Corresponds to pytransform3d's `invert_uncertain_transform`.
+/// Corresponds to pytransform3d's `invert_uncertain_transform`. Unchecked:
+/// [`invert_checked`] validates the inputs and the result.
 ///
 /// ```
 /// use ppoe::uncertainty::invert;
