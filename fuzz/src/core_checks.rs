@@ -150,6 +150,7 @@ pub fn run<T: Fz>(inp: &CoreInput) {
     }
     unchecked_never_panic(&t1, &t2, &c1, &c2, &xi);
     unchecked_valid_domain(&t1, &t2, &c1, &c2, &xi);
+    checked_uncertain(&t1, &t2, &c1, &c2);
     let pool = [c1, c2, c3];
     check_chain(inp, &pool);
     check_fusion_and_estimation(inp, &pool);
@@ -236,6 +237,60 @@ fn unchecked_valid_domain<T: Fz>(
         let (m, c) = uncertainty::concat_locally(t1, t2, c1, c2);
         assert_rigid("concat_locally mean", &m, T::TOL * T::lit(3.0));
         assert_sym("concat_locally cov", &c);
+    }
+}
+
+/// The checked concatenations and inversion: `Ok` exactly when every input passes its
+/// check and the unchecked result is finite, and then with the unchecked result's bits.
+fn checked_uncertain<T: Fz>(t1: &Transform<T>, t2: &Transform<T>, c1: &Mat6<T>, c2: &Mat6<T>) {
+    let inputs_ok = t1.check().is_ok()
+        && t2.check().is_ok()
+        && check_covariance(c1).is_ok()
+        && check_covariance(c2).is_ok();
+    let expect =
+        |name: &str, got: Result<(Transform<T>, Mat6<T>), Error>, want: (Transform<T>, Mat6<T>)| {
+            let finite = transform_finite(&want.0) && want.1.is_finite();
+            match got {
+                Ok(r) => {
+                    assert!(
+                        inputs_ok && finite,
+                        "{name} ({}) accepted {t1:?} {t2:?} {c1:?} {c2:?}",
+                        T::NAME
+                    );
+                    assert_eq!(r, want, "{name} ({}): not the unchecked result", T::NAME);
+                }
+                Err(Error::Overflow) => assert!(
+                    inputs_ok && !finite,
+                    "{name} ({}): overflow of a finite result",
+                    T::NAME
+                ),
+                Err(e) => assert!(
+                    !inputs_ok,
+                    "{name} ({}) rejected valid inputs: {e:?}",
+                    T::NAME
+                ),
+            }
+        };
+    let order = Order::FourthPsd;
+    let g = uncertainty::concat_globally_checked(t1, c1, t2, c2, order);
+    expect(
+        "concat_globally_checked",
+        g,
+        uncertainty::concat_globally(t1, c1, t2, c2, order),
+    );
+    let l = uncertainty::concat_locally_checked(t1, t2, c1, c2);
+    expect(
+        "concat_locally_checked",
+        l,
+        uncertainty::concat_locally(t1, t2, c1, c2),
+    );
+    // invert_checked sees one mean and one covariance: valid ones of the pair may fail it.
+    if inputs_ok {
+        expect(
+            "invert_checked",
+            uncertainty::invert_checked(t1, c1),
+            uncertainty::invert(t1, c1),
+        );
     }
 }
 

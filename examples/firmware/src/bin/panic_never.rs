@@ -119,6 +119,15 @@ fn uncertain<T: Real>() {
     }
     sink(uncertainty::concat_locally(&t, &pose(), &c, &m6()));
     sink(uncertainty::invert(&t, &c));
+    sink(uncertainty::concat_globally_checked(
+        &t,
+        &c,
+        &pose(),
+        &m6(),
+        bb(Order::FourthPsd),
+    ));
+    sink(uncertainty::concat_locally_checked(&t, &pose(), &c, &m6()));
+    sink(uncertainty::invert_checked(&t, &c));
     let opts = bb(IterationOptions::<T>::default());
     let means = [pose::<T>(), pose(), pose()];
     let covs = [m6::<T>(), m6(), m6()];
