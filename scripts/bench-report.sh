@@ -160,6 +160,26 @@ else
   echo "error: skipped (--no-pinocchio)" >"$OUT/pinocchio.txt"
 fi
 
+# --- 2a. the batch against Pinocchio in alternating rounds ---------------------------------
+# The criterion medians and the harness above are timed minutes apart, and the load from
+# other work on a shared machine drifts in between (the seed's batch/Pinocchio ratio went
+# from 0.90 to 1.33 between two runs of the same binaries). Here the two alternate round by
+# round: the harness with 21 batches, then criterion's batch_ f64 benchmarks for 1 s each;
+# the report takes the median of the rounds' own ratios.
+ALT_ROUNDS=11
+if [ -x "$OUT/pinocchio/fk_bench" ] && ! grep -q '^error' "$OUT/pinocchio.txt"; then
+  echo "---- batch / Pinocchio FK, $ALT_ROUNDS alternating rounds"
+  for r in $(seq 1 $ALT_ROUNDS); do
+    echo "round $r"
+    "$OUT/pinocchio/fk_bench" 21 20000 | grep '^pinocchio_batch' || true
+    CRITERION_HOME="$OUT/criterion-alternating" "$BIN" --bench --warm-up-time 0.5 \
+      --measurement-time 1 'batch_(seed|7dof)/batch/f64' 2>/dev/null | grep -E '^[a-z_0-9/]+ +time:' || true
+  done >"$OUT/batch_alternating.txt"
+  cat "$OUT/batch_alternating.txt"
+else
+  echo "error: not measured (no Pinocchio harness in this run)" >"$OUT/batch_alternating.txt"
+fi
+
 # --- 3. pytransform3d ----------------------------------------------------------------------
 if [ $PYTHON = 1 ]; then
   echo "---- pytransform3d ($VENV)"

@@ -144,7 +144,23 @@ def selftest():
     assert "Not measured" in render_lanes_ratio("error: cargo bench --bench lanes_ratio failed")[2]
     lt = lanes_target_rows(lr.replace("seed  ", "arm7  ") + "seed_dense 0 | 300.0 | 306.0 | 1.020\n")
     assert lt[0].endswith("| 1.020 | **missed** by 2.0% |") and lt[1].endswith("| 0.996 | met |"), lt
-    print("bench_report selftest: 8 passed, 0 failed")
+    alt = ("round 1\n"
+           "pinocchio_batch robot=seed joints=6 ns_per_config=200.00 configs=256 batches=21\n"
+           "pinocchio_batch robot=arm7 joints=7 ns_per_config=250.00 configs=256 batches=21\n"
+           "batch_seed/batch/f64    time:   [47.0 µs 51.2 µs 52.0 µs]\n"
+           "batch_7dof/batch/f64    time:   [64.0 µs 64.0 µs 64.0 µs]\n"
+           "round 2\n"
+           "pinocchio_batch robot=seed joints=6 ns_per_config=100.00 configs=256 batches=21\n"
+           "batch_seed/batch/f64    time:   [0.0512 ms 0.0512 ms 0.0512 ms]\n"
+           "round 3\n"
+           "batch_seed/batch/f64    time:   [51.2 µs 51.2 µs 51.2 µs]\n")
+    ar = alternating_ratios(alt)
+    assert [round(r[2], 3) for r in ar["seed"]] == [1.0, 2.0] and ar["arm7"] == [(250.0, 250.0, 1.0)], ar
+    assert "| seed | 2 | 200.0 | 150.0 | 1.50× | 1.00–2.00× |" in render_alternating(alt), render_alternating(alt)
+    at = alternating_target_rows(alt)
+    assert at[0].endswith("| 1.50 | **missed** by 50% |") and at[1].endswith("| 1.00 | met |"), at
+    assert "Not measured" in render_alternating("error: not measured (no Pinocchio harness in this run)")[2]
+    print("bench_report selftest: 12 passed, 0 failed")
 
 
 # ---------------------------------------------------------------- firmware
@@ -377,6 +393,85 @@ def render_batch(crit, pin_text):
                 robot, t, ns(b), ns(s1), ns(na), ns(pf), ratio(b, pf), ratio(s1, b), ratio(na, s1)))
     L.append("")
     return L
+
+
+CRITERION_TIME = re.compile(r"^(\S+)\s+time:\s+\[\S+ \S+ ([0-9.]+) (ns|µs|us|ms) ")
+UNIT_NS = {"ns": 1.0, "µs": 1e3, "us": 1e3, "ms": 1e6}
+
+
+def alternating_ratios(text):
+    """{robot: [(batch ns per configuration, Pinocchio ns, ratio)] per round} from step 2a's
+    rounds: each round's `pinocchio_batch` lines and criterion's `batch_<key>/batch/f64`
+    time (its middle estimate, one call on BATCH configurations); a round missing either
+    side of a robot gives nothing for it."""
+    rounds, cur = [], None
+    for line in (text or "").splitlines():
+        if line.startswith("round "):
+            cur = {"pin": {}, "batch": {}}
+            rounds.append(cur)
+        elif cur is not None and line.startswith("pinocchio_batch "):
+            kv = kv_lines(line, "pinocchio_batch")[0]
+            cur["pin"][kv["robot"]] = float(kv["ns_per_config"])
+        elif cur is not None:
+            m = CRITERION_TIME.match(line)
+            if m and m.group(1).endswith("/batch/f64") and m.group(1).startswith("batch_"):
+                key = m.group(1)[len("batch_"):].split("/")[0]
+                cur["batch"]["arm7" if key == "7dof" else key] = float(m.group(2)) * UNIT_NS[m.group(3)] / BATCH
+    out = {}
+    for r in rounds:
+        for robot, b in r["batch"].items():
+            p = r["pin"].get(robot)
+            if p:
+                out.setdefault(robot, []).append((b, p, b / p))
+    return out
+
+
+def render_alternating(text):
+    """Step 2a: the f64 batch per configuration against Pinocchio's FK, alternating rounds."""
+    L = ["### Batch / Pinocchio FK in alternating rounds (f64, dense covariances)", ""]
+    rows = alternating_ratios(text)
+    if not rows:
+        return L + ["Not measured in this run (%s)." % (step_error(text) or "no result"), ""]
+    L.append("The criterion medians and the harness in the table above are timed minutes apart; here")
+    L.append("they alternate round by round (`scripts/bench-report.sh` step 2a: the harness with 21")
+    L.append("batches over the 256 varied configurations, then criterion's `batch_*/batch/f64` for 1 s")
+    L.append("each), so that load from other work falls on both alike. ns per configuration are")
+    L.append("medians over rounds; the ratio is the median of the rounds' own ratios.")
+    L.append("")
+    L.append("| robot | rounds | batch PPOE / config | Pinocchio FK | batch / Pinocchio FK (median) | rounds' min–max |")
+    L.append("|---|---:|---:|---:|---:|---:|")
+    for robot, name in (("seed", "seed"), ("arm7", "7-joint arm")):
+        rs = rows.get(robot)
+        if not rs:
+            continue
+        ratios = [r[2] for r in rs]
+        L.append("| %s | %d | %.1f | %.1f | %.2f× | %.2f–%.2f× |" % (
+            name, len(rs), median([r[0] for r in rs]), median([r[1] for r in rs]),
+            median(ratios), min(ratios), max(ratios)))
+    L.append("")
+    return L
+
+
+def alternating_target_rows(text):
+    """Issue 28's batch ≤ Pinocchio FK target from the alternating rounds (step 2a)."""
+    rows = alternating_ratios(text)
+    L = []
+    for robot, name in (("seed", "seed"), ("arm7", "7-joint arm")):
+        label = "host f64 batch PPOE per configuration / Pinocchio FK, dense, %s, alternating rounds" % name
+        rs = rows.get(robot)
+        if not rs:
+            L.append("| %s | ≤ 1 | not measured | — |" % label)
+            continue
+        r = median([x[2] for x in rs])
+        L.append("| %s | ≤ 1 | %.2f | %s |" % (
+            label, r, "met" if r <= 1 else "**missed** by %.0f%%" % (100 * (r - 1))))
+    return L
+
+
+def median(xs):
+    s = sorted(xs)
+    n = len(s)
+    return s[n // 2] if n % 2 else 0.5 * (s[n // 2 - 1] + s[n // 2])
 
 
 def lanes_ratio_rows(text):
@@ -683,6 +778,7 @@ def render(d):
     p("")
     L.extend(render_robots(crit, pin_text, (cg or {}).get("ir_per_call", {})))
     L.extend(render_batch(crit, pin_text))
+    L.extend(render_alternating(read_text(os.path.join(d, "batch_alternating.txt"))))
     L.extend(render_lanes_ratio(read_text(os.path.join(d, "lanes_ratio.txt"))))
     L.extend(render_batch_v3(crit, d))
     L.extend(render_python_batch(load(os.path.join(d, "python_batch.json")), m))
@@ -841,6 +937,7 @@ def render(d):
              pu64 * 1e3 / s64 if pu64 and s64 else None)
     L.extend(target_rows(crit, pin_text))
     L.extend(lanes_target_rows(read_text(os.path.join(d, "lanes_ratio.txt"))))
+    L.extend(alternating_target_rows(read_text(os.path.join(d, "batch_alternating.txt"))))
     if a1 and a32:
         p("| constant cost per joint (issue 6) | time(N)/N flat | %.1f ns (N=1) … %.1f ns (N=32) | see the chain table |" % (a1, a32 / 32))
     p("")
