@@ -17,6 +17,7 @@ import os
 import re
 import subprocess
 import sys
+from statistics import median
 
 
 # ---------------------------------------------------------------- callgrind
@@ -466,12 +467,6 @@ def alternating_target_rows(text):
         L.append("| %s | ≤ 1 | %.2f | %s |" % (
             label, r, "met" if r <= 1 else "**missed** by %.0f%%" % (100 * (r - 1))))
     return L
-
-
-def median(xs):
-    s = sorted(xs)
-    n = len(s)
-    return s[n // 2] if n % 2 else 0.5 * (s[n // 2 - 1] + s[n // 2])
 
 
 def lanes_ratio_rows(text):
