@@ -146,9 +146,10 @@ impl Real for f64 {
     /// libm's `sincos` (FreeBSD msun; one shared range reduction; < 1 ulp), bit for bit:
     /// on targets with 128-bit SIMD (x86-64, AArch64) its branches for |x| ≲ 5π/4 (a
     /// revolute joint's angles within ±225°, except within 2⁻²⁰ relative of ±π/2 and ±π)
-    /// are inlined, elsewhere those for |x| ≤ π/4; the rest stays a call. A call clobbers every SSE register, so the caller would spill its
-    /// live values around each joint's sin/cos; inlined, the polynomials also overlap the
-    /// neighbouring joints' work.
+    /// are inlined, elsewhere those for |x| ≤ π/4; the rest stays a call. A call
+    /// clobbers every SSE register, so the caller would spill its live values around
+    /// each joint's sin/cos; inlined, the polynomials also overlap the neighbouring
+    /// joints' work.
     #[inline(always)]
     fn sin_cos_r(self) -> (f64, f64) {
         sincos::sin_cos_f64(self)

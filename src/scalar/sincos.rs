@@ -37,10 +37,10 @@ pub(super) fn sin_cos_f64(x: f64) -> (f64, f64) {
 /// msun's `__rem_pio2` for π/4 ≲ |x| ≲ 5π/4 away from π/2 and π (libm's `rem_pio2` with
 /// its high word `ix` in (0x3fe921fb, 0x400f6a7a], low 20 bits not 0x921fb; the cases
 /// near π/2 and π, where one round of reduction cancels, stay with libm):
-/// x = k·π/2 + y₀ + y₁ with k = ±1 below 3π/4, ±2 above, in one round of the two-part π/2 (85 bits),
-/// then the kernels with the tail y₁ and k's quadrant. The same operations as libm's
-/// branches (x − (−a) is x + a exactly, and k·PIO2_1, k·PIO2_1T are exact for |k| ≤ 2),
-/// so the same bits (tested); error < 1 ulp.
+/// x = k·π/2 + y₀ + y₁ with k = ±1 below 3π/4, ±2 above, in one round of the two-part
+/// π/2 (85 bits), then the kernels with the tail y₁ and k's quadrant. The same
+/// operations as libm's branches (x − (−a) is x + a exactly, and k·PIO2_1, k·PIO2_1T
+/// are exact for |k| ≤ 2), so the same bits (tested); error < 1 ulp.
 #[inline(always)]
 fn sin_cos_f64_near(x: f64, ix: u32) -> (f64, f64) {
     const PIO2_1: f64 = f64::from_bits(0x3ff9_21fb_5440_0000); // first 33 bits of π/2
