@@ -582,7 +582,9 @@ impl<T: Real> ChainView<'_, T> {
     }
 
     /// [`ChainView::ppoe_batch_per_config`] with the input and result checks of
-    /// [`ChainView::ppoe_batch_checked`], every covariance checked.
+    /// [`ChainView::ppoe_batch_checked`], every covariance checked (a covariance equal to
+    /// the same joint's in the previous configuration shares its check: a repeated noise
+    /// model costs one factorisation per joint).
     ///
     /// # Errors
     ///
@@ -597,6 +599,13 @@ impl<T: Real> ChainView<'_, T> {
         self.check_batch_thetas(thetas, out.len())?;
         let n = self.joints.len().max(1);
         for (i, c) in covs.iter().enumerate() {
+            // Equal to the same joint's covariance one configuration earlier, which
+            // passed: the same check would pass (±0 aside, equal values give the same
+            // result; NaN is never equal). A noise model repeated over the batch is
+            // factorised once per joint instead of once per configuration.
+            if i.checked_sub(n).and_then(|p| covs.get(p)) == Some(c) {
+                continue;
+            }
             check_covariance(c).map_err(|e| at(i / n, e))?;
         }
         self.ppoe_batch_per_config(thetas, covs, convention, out)?;

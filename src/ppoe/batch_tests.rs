@@ -167,6 +167,21 @@ fn batch_errors_name_the_configuration() {
     each[5].0[0][0] = -1.0;
     let bad = chain.ppoe_batch_per_config_checked(&th, &each, conv, &mut out);
     assert_eq!(bad.map_err(|e| e.config), Err(Some(1)));
+    // A covariance equal to the previous configuration's shares its check: a bad one
+    // repeated is reported at its first configuration, and NaN (never equal) each time.
+    let mut repeated = each.clone();
+    (repeated[8], repeated[11]) = (repeated[5], repeated[5]);
+    let bad = chain.ppoe_batch_per_config_checked(&th, &repeated, conv, &mut out);
+    assert_eq!(bad.map_err(|e| e.config), Err(Some(1)));
+    let mut nan_late = each.clone();
+    (nan_late[5], nan_late[8]) = (covs[2], covs[2]);
+    nan_late[11].0[1][1] = f64::NAN;
+    let bad = chain.ppoe_batch_per_config_checked(&th, &nan_late, conv, &mut out);
+    let nan = BatchError {
+        config: Some(3),
+        error: Error::NonFinite,
+    };
+    assert_eq!(bad, Err(nan));
     let mut huge = covs.clone();
     huge[0] = Mat6::identity() * f64::MAX;
     let mut huge_each = each.clone();
