@@ -460,13 +460,17 @@ def alternating_target_rows(text):
     for robot, name in (("seed", "seed"), ("arm7", "7-joint arm")):
         label = "host f64 batch PPOE per configuration / Pinocchio FK, dense, %s, alternating rounds" % name
         rs = rows.get(robot)
-        if not rs:
-            L.append("| %s | ≤ 1 | not measured | — |" % label)
-            continue
-        r = median([x[2] for x in rs])
-        L.append("| %s | ≤ 1 | %.2f | %s |" % (
-            label, r, "met" if r <= 1 else "**missed** by %.0f%%" % (100 * (r - 1))))
+        L.append(at_most_one_row(label, median([x[2] for x in rs]) if rs else None, 2))
     return L
+
+
+def at_most_one_row(name, r, digits):
+    """A targets-table row for a ratio that must be ≤ 1 (`None`: not measured), the ratio
+    with `digits` decimals and the miss in percent with `digits` − 2."""
+    if r is None:
+        return "| %s | ≤ 1 | not measured | — |" % name
+    return "| %s | ≤ 1 | %.*f | %s |" % (
+        name, digits, r, "met" if r <= 1 else "**missed** by %.*f%%" % (digits - 2, 100 * (r - 1)))
 
 
 def lanes_ratio_rows(text):
@@ -680,12 +684,7 @@ def lanes_target_rows(text):
     L = []
     for robot, case in (("seed", "seed_dense"), ("7-joint arm", "arm7")):
         name = "host f32/f64 time, dense, single call, %s, interleaved in one process" % robot
-        if case not in rows:
-            L.append("| %s | ≤ 1 | not measured | — |" % name)
-            continue
-        r = rows[case][2]
-        L.append("| %s | ≤ 1 | %.3f | %s |" % (
-            name, r, "met" if r <= 1 else "**missed** by %.1f%%" % (100 * (r - 1))))
+        L.append(at_most_one_row(name, rows[case][2] if case in rows else None, 3))
     return L
 
 
