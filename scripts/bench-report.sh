@@ -10,6 +10,8 @@
 #      the old results are deleted first);
 #  1b. the batch benchmarks again built with -C target-cpu=x86-64-v3, if the CPU has it
 #      (reported beside the default target's, not a target);
+#  1c. the batch benchmarks built with the core in one codegen unit, alternating with the
+#      default build in rounds (reported, not a target);
 #   2. Pinocchio's forwardKinematics on the seed robot and test_data/urdf/arm7.urdf: pip
 #      package `pin` in a venv ($PPOE_PIN_VENV, default <target>/pin-venv), the ops binary
 #      writes the robots as a C++ header (PPOE_PINOCCHIO_EXPORT), benches/pinocchio/
@@ -77,6 +79,14 @@ EOF
 GHZ=$(python3 -c "import json;print(float(json.load(open('$OUT/machine.json'))['mhz'])/1000)")
 
 # --- 1. criterion --------------------------------------------------------------------------
+# The path of the ops benchmark's binary, built with cargo arguments "$@".
+ops_exe() {
+  CARGO_TARGET_DIR=$TD cargo bench "$@" --bench ops --no-run --message-format=json 2>/dev/null \
+    | python3 -c "import json,sys
+for l in sys.stdin:
+    m=json.loads(l)
+    if m.get('reason')=='compiler-artifact' and m['target']['name']=='ops' and m.get('executable'): print(m['executable'])" | tail -1
+}
 echo "---- criterion (one run, $CRIT_ARGS)"
 rm -rf "$TD/criterion"
 # shellcheck disable=SC2086
@@ -85,11 +95,7 @@ CARGO_TARGET_DIR=$TD cargo bench --bench ops --bench rank1 -- $CRIT_ARGS \
 [ -d "$TD/criterion" ] || { echo "bench-report: criterion produced nothing" >&2; exit 1; }
 echo "$TD/criterion" >"$OUT/criterion_dir"
 echo "$CRIT_ARGS" >"$OUT/criterion_args"
-BIN=$(CARGO_TARGET_DIR=$TD cargo bench --bench ops --no-run --message-format=json 2>/dev/null \
-  | python3 -c "import json,sys
-for l in sys.stdin:
-    m=json.loads(l)
-    if m.get('reason')=='compiler-artifact' and m['target']['name']=='ops' and m.get('executable'): print(m['executable'])" | tail -1)
+BIN=$(ops_exe)
 
 # --- 1a. f32/f64 interleaved in one process (benches/lanes_ratio.rs) -------------------------
 # Criterion times f32 and f64 seconds apart, so load from other work can favour either; this
@@ -113,6 +119,30 @@ if grep -qw avx2 /proc/cpuinfo && grep -qw fma /proc/cpuinfo && grep -qw bmi2 /p
   echo "$TD-v3/criterion" >"$OUT/criterion_v3_dir"
 else
   echo "bench-report: this CPU lacks an x86-64-v3 feature; no v3 section" >&2
+fi
+
+# --- 1c. the core compiled in one codegen unit (reported, not a target) -------------------
+# Cargo's release and bench profiles compile a crate in 16 codegen units, which rustc's
+# crate-local ThinLTO then optimises once more; a project that sets codegen-units = 1 gets
+# one optimisation pipeline. The ops benchmark again with the ppoe package (the core and
+# its benchmarks) in one unit, in the same target dir (only those two rebuild), the two
+# binaries alternating round by round on the batch_ benchmarks (batch and single call).
+CGU_ROUNDS=5
+BIN_CGU1=$(ops_exe --config 'profile.bench.package.ppoe.codegen-units=1')
+if [ -x "$BIN_CGU1" ] && [ "$BIN_CGU1" != "$BIN" ]; then
+  echo "---- batch_ benchmarks, default against codegen-units = 1, $CGU_ROUNDS alternating rounds"
+  for r in $(seq 1 $CGU_ROUNDS); do
+    echo "round $r"
+    for build in default one_unit; do
+      exe=$BIN; [ $build = one_unit ] && exe=$BIN_CGU1
+      echo "build $build"
+      CRITERION_HOME="$OUT/criterion-cgu" "$exe" --bench --warm-up-time 0.3 --measurement-time 0.5 \
+        'batch_(seed|7dof)/(batch|single)/' 2>/dev/null | grep -E '^[a-z_0-9/]+ +time:' || true
+    done
+  done >"$OUT/codegen_units.txt"
+  cat "$OUT/codegen_units.txt"
+else
+  echo "error: the one-codegen-unit build failed" >"$OUT/codegen_units.txt"
 fi
 
 # --- 2. Pinocchio -------------------------------------------------------------------------

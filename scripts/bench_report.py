@@ -161,7 +161,21 @@ def selftest():
     at = alternating_target_rows(alt)
     assert at[0].endswith("| 1.50 | **missed** by 50% |") and at[1].endswith("| 1.00 | met |"), at
     assert "Not measured" in render_alternating("error: not measured (no Pinocchio harness in this run)")[2]
-    print("bench_report selftest: 12 passed, 0 failed")
+    cgu = ("round 1\nbuild default\n"
+           "batch_seed/batch/f64    time:   [47.0 µs 51.2 µs 52.0 µs]\n"
+           "batch_seed/single/f32   time:   [300.0 ns 300.0 ns 300.0 ns]\n"
+           "build one_unit\n"
+           "batch_seed/batch/f64    time:   [0.0768 ms 0.0768 ms 0.0768 ms]\n"
+           "round 2\nbuild default\n"
+           "batch_seed/batch/f64    time:   [51.2 µs 51.2 µs 51.2 µs]\n"
+           "build one_unit\n"
+           "batch_seed/batch/f64    time:   [51.2 µs 51.2 µs 51.2 µs]\n"
+           "batch_seed/single/f32   time:   [1.0 µs 1.0 µs 1.0 µs]\n")
+    cr = codegen_unit_rounds(cgu)
+    assert cr == {("seed", "batch", "f64"): [(200.0, 300.0), (200.0, 200.0)]}, cr
+    assert "| seed | batch | f64 | 2 | 200.0 | 250.0 | 1.25× |" in render_codegen_units(cgu), render_codegen_units(cgu)
+    assert "Not measured" in render_codegen_units("error: the one-codegen-unit build failed")[2]
+    print("bench_report selftest: 13 passed, 0 failed")
 
 
 # ---------------------------------------------------------------- firmware
@@ -473,6 +487,60 @@ def at_most_one_row(name, r, digits):
         name, digits, r, "met" if r <= 1 else "**missed** by %.*f%%" % (digits - 2, 100 * (r - 1)))
 
 
+def codegen_unit_rounds(text):
+    """{(robot, call, scalar): [(default ns, one-unit ns)] per round} from step 1c: each
+    round's `build default` then `build one_unit` criterion lines of `batch_<key>/<call>/<T>`,
+    ns per configuration (a batch call's time divided by BATCH); a round missing either
+    build's line gives nothing for that benchmark."""
+    rounds, cur, build = [], None, None
+    for line in (text or "").splitlines():
+        if line.startswith("round "):
+            cur = {"default": {}, "one_unit": {}}
+            rounds.append(cur)
+        elif cur is not None and line.startswith("build "):
+            build = line.split()[1]
+        elif cur is not None and build in cur:
+            m = CRITERION_TIME.match(line)
+            if m and m.group(1).startswith("batch_"):
+                key, call, t = m.group(1)[len("batch_"):].split("/")
+                v = float(m.group(2)) * UNIT_NS[m.group(3)] / (BATCH if call == "batch" else 1)
+                cur[build][("arm7" if key == "7dof" else key, call, t)] = v
+    out = {}
+    for r in rounds:
+        for k, a in r["default"].items():
+            if k in r["one_unit"]:
+                out.setdefault(k, []).append((a, r["one_unit"][k]))
+    return out
+
+
+def render_codegen_units(text):
+    """Step 1c: the batch benchmarks with the core in one codegen unit against the default."""
+    L = ["### The core compiled in one codegen unit (reported, not a target)", ""]
+    rows = codegen_unit_rounds(text)
+    if not rows:
+        return L + ["Not measured in this run (%s)." % (step_error(text) or "no result"), ""]
+    L.append("Cargo's release and bench profiles compile a crate in 16 codegen units, which rustc's")
+    L.append("crate-local ThinLTO optimises once more; `codegen-units = 1` (a common setting for release")
+    L.append("builds) gives one optimisation pipeline. `scripts/bench-report.sh` step 1c builds the ops")
+    L.append("benchmark again with `--config 'profile.bench.package.ppoe.codegen-units=1'` and alternates")
+    L.append("the two binaries round by round (the `batch_` benchmarks, 0.5 s each). ns per configuration")
+    L.append("(batch) or per call (single): medians over rounds; the ratio is the median of the rounds' own.")
+    L.append("")
+    L.append("| robot | call | scalar | rounds | default | one codegen unit | one unit / default |")
+    L.append("|---|---|---|---:|---:|---:|---:|")
+    for robot, name in (("seed", "seed"), ("arm7", "7-joint arm")):
+        for call in ("batch", "single"):
+            for t in ("f64", "f32"):
+                rs = rows.get((robot, call, t))
+                if not rs:
+                    continue
+                L.append("| %s | %s | %s | %d | %.1f | %.1f | %.2f× |" % (
+                    name, call, t, len(rs), median([a for a, _ in rs]), median([b for _, b in rs]),
+                    median([b / a for a, b in rs])))
+    L.append("")
+    return L
+
+
 def lanes_ratio_rows(text):
     """The `case lanes | f64 ns | f32 ns | ratio` lines of benches/lanes_ratio.rs, as
     {case: (f64 ns, f32 ns, median per-round f32/f64)} (target lanes, 0, only)."""
@@ -775,6 +843,7 @@ def render(d):
     L.extend(render_alternating(read_text(os.path.join(d, "batch_alternating.txt"))))
     L.extend(render_lanes_ratio(read_text(os.path.join(d, "lanes_ratio.txt"))))
     L.extend(render_batch_v3(crit, d))
+    L.extend(render_codegen_units(read_text(os.path.join(d, "codegen_units.txt"))))
     L.extend(render_python_batch(load(os.path.join(d, "python_batch.json")), m))
     L.extend(render_rank1(crit))
     L.extend(render_fit(fit_text).splitlines())
