@@ -619,6 +619,7 @@ def render_python_batch(pb, m):
     threads = "every core (%s)" % pb.get("cpu_count", "?")
     rows = (("**ppoe batch**: one `probabilistic_forward_kinematics` call, thetas (10000, 6), covs (6, 6, 6) shared, GIL released, on %s" % threads, "ppoe_batch_us"),
             ("ppoe batch as above with `threads=1`", "ppoe_batch_one_thread_us"),
+            ("ppoe batch as the first, writing into the same `out=` arrays every call", "ppoe_batch_out_us"),
             ("ppoe batch with covs (10000, 6, 6, 6), each checked symmetric PSD", "ppoe_batch_per_config_covs_us"),
             ("Python loop of single ppoe calls", "ppoe_loop_us"))
     for name, k in rows:

@@ -5,6 +5,8 @@ Per configuration, median of repeats:
 * ``ppoe batch``: one ``probabilistic_forward_kinematics`` call on (10000, 6) joint values
   with the joint covariances shared (the GIL released inside), on every core (the
   default ``threads=None``), and the same with ``threads=1``;
+* ``ppoe batch, out=``: the default call writing into the same two result arrays every
+  time (``out=``), which allocates nothing;
 * ``ppoe batch, per-config covs``: the same with (10000, 6, 6, 6) covariances;
 * ``ppoe loop``: a Python loop of single calls over the same configurations;
 * ``pytransform3d example``: the example's ``probabilistic_forward_kinematics`` as
@@ -92,6 +94,7 @@ def main():
     covs = seed_covs()
     per = np.repeat(covs[np.newaxis], N, axis=0)
     pfk = robot.probabilistic_forward_kinematics
+    out = (np.empty((N, 4, 4)), np.empty((N, 6, 6)))
     baseline = load(os.path.join("scripts", "bench_pytransform3d.py"), "bench_pytransform3d")
     chain = baseline.seed_chain()
     example = baseline.probabilistic_forward_kinematics
@@ -107,6 +110,7 @@ def main():
         "openblas_num_threads": os.environ.get("OPENBLAS_NUM_THREADS"),
         "ppoe_batch_us": 1e6 * per_config(lambda: pfk(thetas, covs), N, 21),
         "ppoe_batch_one_thread_us": 1e6 * per_config(lambda: pfk(thetas, covs, threads=1), N, 21),
+        "ppoe_batch_out_us": 1e6 * per_config(lambda: pfk(thetas, covs, out=out), N, 21),
         "ppoe_batch_per_config_covs_us": 1e6 * per_config(lambda: pfk(thetas, per), N, 11),
         "ppoe_loop_us": 1e6 * per_config(lambda: [pfk(t, covs) for t in thetas], N, 3),
         "pytransform3d_example_us": 1e6 * per_config(reference, N_REFERENCE, 3),

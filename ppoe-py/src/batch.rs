@@ -3,11 +3,11 @@
 //! configuration does not depend on the batch it is in: a batch's results equal the
 //! single calls' (batches of one) bit for bit.
 
-use crate::convert::{array, elements, mat6s, push_transform};
+use crate::convert::{array, elements, elements_mut, mat6s, push_transform};
 use crate::{core_err, PpoeError};
-use numpy::{Element, PyArrayDyn, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::{Element, PyArrayDyn, PyReadonlyArrayDyn, PyReadwriteArrayDyn, PyUntypedArrayMethods};
 use ppoe::chain::{ChainView, Convention, UncertainPose};
-use ppoe::{Error, Real, Transform};
+use ppoe::{Error, Mat6, Real, Transform};
 use pyo3::exceptions::PyMemoryError;
 use pyo3::prelude::*;
 
@@ -39,6 +39,24 @@ pub(crate) fn forward_kinematics<'py, T: Real + Element + Send + Sync>(
     array(py, out, &[count, 4, 4])
 }
 
+/// The inputs of a PPOE batch call, checked: `thetas` (N, n) and covariances (n, 6, 6)
+/// shared by all or (N, n, 6, 6); the configuration count N.
+fn ppoe_inputs<'a, T: Real + Element>(
+    n: usize,
+    thetas: &'a PyReadonlyArrayDyn<'_, T>,
+    covs: &'a PyReadonlyArrayDyn<'_, T>,
+) -> PyResult<(&'a [T], &'a [T], bool, usize)> {
+    let th = elements(thetas, "thetas", &[usize::MAX, n])?;
+    let count = thetas.shape()[0];
+    let shared = covs.ndim() == 3;
+    let c = if shared {
+        elements(covs, "covs", &[n, 6, 6])?
+    } else {
+        elements(covs, "covs", &[count, n, 6, 6])?
+    };
+    Ok((th, c, shared, count))
+}
+
 /// The PPOE of N configurations `thetas` (N, n) with covariances (n, 6, 6) shared by all
 /// or (N, n, 6, 6) → poses (N, 4, 4), covariances (N, 6, 6).
 pub(crate) fn ppoe<'py, T: Real + Element + Send + Sync>(
@@ -49,21 +67,36 @@ pub(crate) fn ppoe<'py, T: Real + Element + Send + Sync>(
     convention: Convention,
     threads: usize,
 ) -> PyResult<(ArrayOf<'py, T>, ArrayOf<'py, T>)> {
-    let n = view.joints.len();
-    let th = elements(thetas, "thetas", &[usize::MAX, n])?;
-    let count = thetas.shape()[0];
-    let shared = covs.ndim() == 3;
-    let c = if shared {
-        elements(covs, "covs", &[n, 6, 6])?
-    } else {
-        elements(covs, "covs", &[count, n, 6, 6])?
-    };
-    let (poses, out_covs) =
-        py.detach(|| ppoe_all(view, count, th, c, shared, convention, threads))?;
+    let (th, c, shared, count) = ppoe_inputs(view.joints.len(), thetas, covs)?;
+    let (poses, out_covs) = py.detach(|| -> Result<_, PyErr> {
+        let (mut poses, mut out_covs) = (zeroed(16, count)?, zeroed(36, count)?);
+        Batch::new(view, th, c, shared, convention).run(threads, &mut poses, &mut out_covs)?;
+        Ok((poses, out_covs))
+    })?;
     Ok((
         array(py, poses, &[count, 4, 4])?,
         array(py, out_covs, &[count, 6, 6])?,
     ))
+}
+
+/// [`ppoe`] writing into the caller's arrays `poses_out` (N, 4, 4) and `covs_out`
+/// (N, 6, 6), C-contiguous (rust-numpy's borrow check has already refused arrays that
+/// overlap each other or the inputs). On an error their contents are unspecified.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn ppoe_into<'py, T: Real + Element + Send + Sync>(
+    py: Python<'py>,
+    view: ChainView<'_, T>,
+    thetas: &PyReadonlyArrayDyn<'py, T>,
+    covs: &PyReadonlyArrayDyn<'py, T>,
+    convention: Convention,
+    threads: usize,
+    poses_out: &mut PyReadwriteArrayDyn<'py, T>,
+    covs_out: &mut PyReadwriteArrayDyn<'py, T>,
+) -> PyResult<()> {
+    let (th, c, shared, count) = ppoe_inputs(view.joints.len(), thetas, covs)?;
+    let poses = elements_mut(poses_out, "out[0]", &[count, 4, 4])?;
+    let out_covs = elements_mut(covs_out, "out[1]", &[count, 6, 6])?;
+    py.detach(|| Batch::new(view, th, c, shared, convention).run(threads, poses, out_covs))
 }
 
 /// An empty vector with room for `per·count` values, or a `MemoryError` where they do
@@ -116,67 +149,65 @@ fn cores() -> usize {
     *CORES.get_or_init(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
 }
 
-/// The PPOE of every configuration, on `threads` threads ([`thread_count`]) each given a
-/// contiguous range of configurations ([`Batch::range`]), the first on the caller's. A
-/// configuration's result does not depend on the batch it is in, so the results are the
-/// same bits whatever the thread count; the error reported is that of the first failing
-/// range. Writes 16 + 36 values per configuration.
-#[allow(clippy::too_many_arguments)]
-fn ppoe_all<T: Real>(
-    view: ChainView<'_, T>,
-    count: usize,
-    thetas: &[T],
-    covs: &[T],
-    shared: bool,
-    convention: Convention,
-    threads: usize,
-) -> Result<(Vec<T>, Vec<T>), PyErr> {
-    let per = mat6s(covs);
-    let (mut poses, mut out_covs) = (zeroed(16, count)?, zeroed(36, count)?);
-    let threads = thread_count(count, threads);
-    let size = count.div_ceil(threads).max(1);
-    let job = Batch {
-        view,
-        thetas,
-        covs: &per,
-        shared,
-        convention,
-    };
-    let mut ranges = poses
-        .chunks_mut(16 * size)
-        .zip(out_covs.chunks_mut(36 * size));
-    // The first range runs on the caller's thread, whose core is awake and holds the
-    // inputs in its caches; only the others start threads (none for one range).
-    let Some((p0, c0)) = ranges.next() else {
-        return Ok((Vec::new(), Vec::new()));
-    };
-    let results: Vec<Result<(), PyErr>> = std::thread::scope(|s| {
-        let handles: Vec<_> = ranges
-            .enumerate()
-            .map(|(k, (p, c))| s.spawn(move || job.range((k + 1) * size, p, c)))
-            .collect();
-        let first = job.range(0, p0, c0);
-        let rest = handles.into_iter().map(|h| {
-            h.join()
-                .unwrap_or_else(|_| Err(PpoeError::new_err("a batch thread panicked")))
-        });
-        core::iter::once(first).chain(rest).collect()
-    });
-    results.into_iter().collect::<Result<(), PyErr>>()?;
-    Ok((poses, out_covs))
-}
-
 /// One batch's inputs, shared by its threads.
-#[derive(Clone, Copy)]
 struct Batch<'a, T> {
     view: ChainView<'a, T>,
     thetas: &'a [T],
-    covs: &'a [ppoe::Mat6<T>],
+    /// The covariances as 6×6 matrices (n, or n per configuration).
+    covs: Vec<Mat6<T>>,
     shared: bool,
     convention: Convention,
 }
 
-impl<T: Real> Batch<'_, T> {
+impl<'a, T: Real> Batch<'a, T> {
+    /// The batch of `thetas` (row-major, n per configuration) with the covariances `covs`
+    /// (36 values each: n shared by all if `shared`, else n per configuration).
+    fn new(
+        view: ChainView<'a, T>,
+        thetas: &'a [T],
+        covs: &[T],
+        shared: bool,
+        convention: Convention,
+    ) -> Self {
+        Self {
+            view,
+            thetas,
+            covs: mat6s(covs),
+            shared,
+            convention,
+        }
+    }
+
+    /// The PPOE of every configuration into `poses` (16 values each) and `covs` (36), on
+    /// `threads` threads ([`thread_count`]) each given a contiguous range of
+    /// configurations ([`Batch::range`]), the first on the caller's. A configuration's
+    /// result does not depend on the batch it is in, so the results are the same bits
+    /// whatever the thread count; the error reported is that of the first failing range.
+    fn run(&self, threads: usize, poses: &mut [T], covs: &mut [T]) -> Result<(), PyErr> {
+        let count = poses.len() / 16;
+        let threads = thread_count(count, threads);
+        let size = count.div_ceil(threads).max(1);
+        let mut ranges = poses.chunks_mut(16 * size).zip(covs.chunks_mut(36 * size));
+        // The first range runs on the caller's thread, whose core is awake and holds the
+        // inputs in its caches; only the others start threads (none for one range).
+        let Some((p0, c0)) = ranges.next() else {
+            return Ok(());
+        };
+        let results: Vec<Result<(), PyErr>> = std::thread::scope(|s| {
+            let handles: Vec<_> = ranges
+                .enumerate()
+                .map(|(k, (p, c))| s.spawn(move || self.range((k + 1) * size, p, c)))
+                .collect();
+            let first = self.range(0, p0, c0);
+            let rest = handles.into_iter().map(|h| {
+                h.join()
+                    .unwrap_or_else(|_| Err(PpoeError::new_err("a batch thread panicked")))
+            });
+            core::iter::once(first).chain(rest).collect()
+        });
+        results.into_iter().collect()
+    }
+
     /// The configurations from `first` on, as many as `poses` has room for (16 values
     /// each; `covs` 36 each), through the core's checked batch calls (`ppoe_batch_checked`,
     /// or `ppoe_batch_per_config_checked` when `covs` holds n covariances per
@@ -193,7 +224,7 @@ impl<T: Real> Batch<'_, T> {
             let (th, out) = (&self.thetas[at * n..(at + rows) * n], &mut buf[..rows]);
             let done = if self.shared {
                 self.view
-                    .ppoe_batch_checked(th, self.covs, self.convention, out)
+                    .ppoe_batch_checked(th, &self.covs, self.convention, out)
             } else {
                 let c = &self.covs[at * n..(at + rows) * n];
                 self.view

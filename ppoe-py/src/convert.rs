@@ -3,7 +3,8 @@
 //! `ppoe._ppoe` with a wrong array is an error, never a wrong answer.
 
 use numpy::{
-    Element, PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods,
+    Element, PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyReadwriteArrayDyn,
+    PyUntypedArrayMethods,
 };
 use ppoe::{Mat3, Mat6, Matrix, Real, Transform, Vec3, Vector};
 use pyo3::exceptions::PyValueError;
@@ -39,6 +40,27 @@ pub(crate) fn elements<'a, T: Element>(
         return Err(not_c());
     }
     a.as_slice().map_err(|_| not_c())
+}
+
+/// The elements of the writeable array `a`, for results, if its shape is `shape` and it
+/// is C-contiguous (as [`elements`]).
+pub(crate) fn elements_mut<'a, T: Element>(
+    a: &'a mut PyReadwriteArrayDyn<'_, T>,
+    name: &str,
+    shape: &[usize],
+) -> PyResult<&'a mut [T]> {
+    let got = a.shape();
+    if got != shape {
+        return Err(PyValueError::new_err(format!(
+            "{name}: expected shape {}, got {got:?}",
+            shape_text(shape)
+        )));
+    }
+    let not_c = || PyValueError::new_err(format!("{name}: array is not C-contiguous"));
+    if !a.is_c_contiguous() {
+        return Err(not_c());
+    }
+    a.as_slice_mut().map_err(|_| not_c())
 }
 
 fn shape_text(shape: &[usize]) -> String {

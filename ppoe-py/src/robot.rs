@@ -4,7 +4,7 @@
 use crate::batch;
 use crate::convert::{array, transform_array, Array, Pair};
 use crate::{core_err, PpoeError};
-use numpy::{PyArrayDyn, PyReadonlyArrayDyn};
+use numpy::{PyArrayDyn, PyReadonlyArrayDyn, PyReadwriteArrayDyn};
 use ppoe::chain::{ChainView, Convention, Joint, JointKind};
 use ppoe::Transform;
 use pyo3::exceptions::PyValueError;
@@ -184,6 +184,41 @@ impl Robot {
             convention(convention_name)?,
             threads,
         )
+    }
+
+    /// [`Robot::ppoe`] writing into `poses_out` (N, 4, 4) and `covs_out` (N, 6, 6),
+    /// C-contiguous, writeable, not overlapping the inputs or each other.
+    #[allow(clippy::too_many_arguments)]
+    fn ppoe_into<'py>(
+        &self,
+        py: Python<'py>,
+        thetas: PyReadonlyArrayDyn<'py, f64>,
+        covs: PyReadonlyArrayDyn<'py, f64>,
+        convention_name: &str,
+        threads: usize,
+        mut poses_out: PyReadwriteArrayDyn<'py, f64>,
+        mut covs_out: PyReadwriteArrayDyn<'py, f64>,
+    ) -> PyResult<()> {
+        let c = convention(convention_name)?;
+        let (p, o) = (&mut poses_out, &mut covs_out);
+        batch::ppoe_into(py, self.view(), &thetas, &covs, c, threads, p, o)
+    }
+
+    /// [`Robot::ppoe_into`] in float32 (the chain rounded to f32).
+    #[allow(clippy::too_many_arguments)]
+    fn ppoe_into_f32<'py>(
+        &self,
+        py: Python<'py>,
+        thetas: PyReadonlyArrayDyn<'py, f32>,
+        covs: PyReadonlyArrayDyn<'py, f32>,
+        convention_name: &str,
+        threads: usize,
+        mut poses_out: PyReadwriteArrayDyn<'py, f32>,
+        mut covs_out: PyReadwriteArrayDyn<'py, f32>,
+    ) -> PyResult<()> {
+        let c = convention(convention_name)?;
+        let (p, o) = (&mut poses_out, &mut covs_out);
+        batch::ppoe_into(py, self.view32(), &thetas, &covs, c, threads, p, o)
     }
 
     /// [`Robot::ppoe`] in float32 (the chain rounded to f32).

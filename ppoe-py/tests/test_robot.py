@@ -186,3 +186,96 @@ def test_float32_rejects_values_beyond_its_range(robots32, seed_covs):
         robots32["right"].probabilistic_forward_kinematics(np.full(6, 1e300), seed_covs)
     with pytest.raises(ValueError, match="dtype"):
         ppoe.ProbabilisticRobotKinematics("", "tcp", "linkmount", SEED_JOINTS, dtype=np.int32)
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+@pytest.mark.parametrize("count", [None, 0, 1, 5000])
+def test_out_arrays_get_the_same_bits(robots, robots32, dtype, count):
+    # None: a single call into (4, 4) and (6, 6); 5000: two threads write one pair of arrays.
+    r = (robots[0] if dtype == np.float64 else robots32)["pytransform3d"]
+    rng = np.random.default_rng(7)
+    shape = (6,) if count is None else (count, 6)
+    thetas = rng.uniform(-2, 2, shape)
+    per = np.repeat(random_case(rng)[1][np.newaxis], 1 if count is None else count, axis=0)
+    for covs in (random_case(rng)[1], per):
+        if count is None:
+            covs = covs[0] if covs.ndim == 4 else covs
+        want = r.probabilistic_forward_kinematics(thetas, covs)
+        # Filled with NaN first: every element must be written.
+        out = (np.full(want[0].shape, np.nan, dtype), np.full(want[1].shape, np.nan, dtype))
+        got = r.probabilistic_forward_kinematics(thetas, covs, out=out)
+        assert got[0] is out[0] and got[1] is out[1]
+        np.testing.assert_array_equal(out[0], want[0])
+        np.testing.assert_array_equal(out[1], want[1])
+
+
+def test_out_arrays_are_checked(robots, seed_covs):
+    r = robots[0]["right"]
+    thetas = np.zeros((3, 6))
+    ok = (np.empty((3, 4, 4)), np.empty((3, 6, 6)))
+    bad = {
+        "a tuple of two arrays": [ok[0], ok[1]],
+        "expected a numpy array": (ok[0], [[0.0] * 6] * 6),
+        "expected dtype float64": (ok[0].astype(np.float32), ok[1]),
+        r"expected shape \(3, 6, 6\)": (ok[0], np.empty((2, 6, 6))),
+        "not C-contiguous": (np.empty((4, 4, 3)).transpose(2, 0, 1), ok[1]),
+        "read-only": (_readonly(np.empty((3, 4, 4))), ok[1]),
+        "share memory": _overlapping(3),
+    }
+    for match, out in bad.items():
+        before = [np.array(a, copy=True) for a in out if isinstance(a, np.ndarray)]
+        with pytest.raises(ValueError, match=match):
+            r.probabilistic_forward_kinematics(thetas, seed_covs, out=out)
+        # Refused before anything was written.
+        for a, b in zip([a for a in out if isinstance(a, np.ndarray)], before):
+            np.testing.assert_array_equal(a, b)
+    with pytest.raises(ValueError, match="shares memory with an input"):
+        covs = np.array(seed_covs)
+        r.probabilistic_forward_kinematics(np.zeros(6), covs, out=(np.empty((4, 4)), covs[0]))
+
+
+def test_the_native_call_refuses_overlapping_arrays(robots, seed_covs):
+    # Past the wrapper's checks, rust-numpy's borrow check refuses a result array that
+    # overlaps the other or an input.
+    r = robots[0]["right"]._robot
+    covs = np.array(seed_covs)
+    with pytest.raises(TypeError, match="already borrowed"):
+        r.ppoe_into(np.zeros((2, 6)), covs, "right", 1, *_overlapping(2))
+    base = np.zeros(2 * 6 + 2 * 16)
+    thetas, poses = base[:12].reshape(2, 6), base[:32].reshape(2, 4, 4)
+    with pytest.raises(TypeError, match="already borrowed"):
+        r.ppoe_into(thetas, covs, "right", 1, poses, np.empty((2, 6, 6)))
+
+
+def _overlapping(count):
+    """(count, 4, 4) and (count, 6, 6) views of one buffer."""
+    base = np.empty(36 * count)
+    return base[: 16 * count].reshape(count, 4, 4), base.reshape(count, 6, 6)
+
+
+def _readonly(a):
+    a.flags.writeable = False
+    return a
+
+
+def test_robot_stub_matches_the_signatures():
+    # _robot.pyi is what type checkers see: every public method's parameters, kinds and
+    # defaults as the class has them.
+    import ast
+    import inspect
+    import os
+
+    path = os.path.join(os.path.dirname(ppoe.__file__), "_robot.pyi")
+    with open(path) as f:
+        tree = ast.parse(f.read())
+    cls = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == "ProbabilisticRobotKinematics")
+    methods = {n.name: n for n in cls.body if isinstance(n, ast.FunctionDef)}
+    for name in ("probabilistic_forward_kinematics", "forward_kinematics"):
+        a = methods[name].args
+        params = list(inspect.signature(getattr(ppoe.ProbabilisticRobotKinematics, name)).parameters.values())
+        assert [x.arg for x in a.args] == [p.name for p in params if p.kind is p.POSITIONAL_OR_KEYWORD], name
+        stub_kw = {x.arg: d for x, d in zip(a.kwonlyargs, a.kw_defaults)}
+        runtime_kw = {p.name: p.default for p in params if p.kind is p.KEYWORD_ONLY}
+        assert list(stub_kw) == list(runtime_kw), name
+        for k, default in runtime_kw.items():
+            assert ast.literal_eval(stub_kw[k]) == default, (name, k)

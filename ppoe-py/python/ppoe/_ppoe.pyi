@@ -42,6 +42,18 @@ class Robot:
         convention_name: str,
         threads: int,
     ) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]: ...
+    def ppoe_into(
+        self, thetas: _A, covs: _A, convention_name: str, threads: int, poses_out: _A, covs_out: _A
+    ) -> None: ...
+    def ppoe_into_f32(
+        self,
+        thetas: npt.NDArray[np.float32],
+        covs: npt.NDArray[np.float32],
+        convention_name: str,
+        threads: int,
+        poses_out: npt.NDArray[np.float32],
+        covs_out: npt.NDArray[np.float32],
+    ) -> None: ...
 
 def fit(
     robot: Robot,

@@ -13,6 +13,30 @@ def _readonly(a):
     return a
 
 
+def _check_out(out, shapes, dtype, inputs):
+    """Rejects result arrays ``out`` the native call cannot write into: not a pair of
+    numpy arrays of ``shapes`` and ``dtype``, not C-contiguous, read-only, or overlapping
+    each other or one of ``inputs`` (the arrays handed to the native call)."""
+    if not (isinstance(out, tuple) and len(out) == 2):
+        raise ValueError(f"out: expected a tuple of two arrays (ee2base, cov), got {type(out).__name__}")
+    for k, (a, shape) in enumerate(zip(out, shapes)):
+        name = f"out[{k}]"
+        if not isinstance(a, np.ndarray):
+            raise ValueError(f"{name}: expected a numpy array, got {type(a).__name__}")
+        if a.dtype != dtype:
+            raise ValueError(f"{name}: expected dtype {dtype}, got {a.dtype}")
+        if a.shape != shape:
+            raise ValueError(f"{name}: expected shape {shape}, got {a.shape}")
+        if not a.flags.c_contiguous:
+            raise ValueError(f"{name}: array is not C-contiguous")
+        if not a.flags.writeable:
+            raise ValueError(f"{name}: array is read-only")
+        if any(np.may_share_memory(a, x) for x in inputs):
+            raise ValueError(f"{name}: shares memory with an input")
+    if np.may_share_memory(out[0], out[1]):
+        raise ValueError("out: the two arrays share memory")
+
+
 class ProbabilisticRobotKinematics:
     """A serial chain of a URDF robot with uncertain joints (Meyer et al. 2022).
 
@@ -109,7 +133,7 @@ class ProbabilisticRobotKinematics:
         poses = fk(batch)
         return poses[0] if single else poses
 
-    def probabilistic_forward_kinematics(self, thetas, covs, *, threads=None):
+    def probabilistic_forward_kinematics(self, thetas, covs, *, threads=None, out=None):
         """Tip pose(s) and covariance(s) of the PPOE.
 
         Joint values are clipped to the limits (``np.clip`` semantics). The batch form
@@ -128,13 +152,20 @@ class ProbabilisticRobotKinematics:
             Threads a batch runs on (keyword only): ``None`` (default) every core the
             operating system offers, an int that many; a batch gets at most one thread
             per 2048 configurations. The results are the same bits whatever the count.
+        out : tuple of two arrays, optional
+            ``(ee2base, cov)`` to write the results into instead of new arrays (keyword
+            only): the shapes below, the robot's dtype, C-contiguous, writeable, sharing
+            memory with neither each other nor the joint values and covariances. They are
+            returned; repeated batches then allocate no result memory. If the call raises,
+            their contents are unspecified.
 
         Returns
         -------
         ee2base : array, shape (4, 4) or (N, 4, 4)
-            The tip pose in the base frame.
+            The tip pose in the base frame (``out[0]`` if given).
         cov : array, shape (6, 6) or (N, 6, 6)
-            Its covariance in the convention chosen at construction.
+            Its covariance in the convention chosen at construction (``out[1]`` if
+            given).
 
         Raises
         ------
@@ -142,7 +173,7 @@ class ProbabilisticRobotKinematics:
             For a covariance that is not symmetric PSD, or a non-finite result (naming
             the configuration of a batch).
         ValueError
-            For wrong shapes or dtypes, NaN or infinity.
+            For wrong shapes or dtypes, NaN or infinity, or an unusable ``out``.
         """
         n = self.n_joints
         batch, single = self._thetas(thetas)
@@ -163,6 +194,16 @@ class ProbabilisticRobotKinematics:
         # Beyond one thread per 2048 configurations the count changes nothing; capped so
         # that any Python int fits the native call's integer.
         threads = min(threads, 1 << 31)
-        ppoe = self._robot.ppoe_f32 if self._f32 else self._robot.ppoe
-        poses, out = ppoe(batch, c, self.convention, threads)
-        return (poses[0], out[0]) if single else (poses, out)
+        if out is None:
+            ppoe = self._robot.ppoe_f32 if self._f32 else self._robot.ppoe
+            poses, cov = ppoe(batch, c, self.convention, threads)
+            return (poses[0], cov[0]) if single else (poses, cov)
+        count = len(batch)
+        shapes = ((4, 4), (6, 6)) if single else ((count, 4, 4), (count, 6, 6))
+        _check_out(out, shapes, self.dtype, (batch, c))
+        # A C-contiguous array's reshape is a view: a single call's (4, 4) and (6, 6)
+        # arrays are written as batches of one.
+        views = tuple(a.reshape((count,) + a.shape[-2:]) for a in out)
+        into = self._robot.ppoe_into_f32 if self._f32 else self._robot.ppoe_into
+        into(batch, c, self.convention, threads, *views)
+        return out

@@ -25,5 +25,10 @@ class ProbabilisticRobotKinematics:
     def n_joints(self) -> int: ...
     def forward_kinematics(self, thetas: npt.ArrayLike) -> npt.NDArray[np.float64]: ...
     def probabilistic_forward_kinematics(
-        self, thetas: npt.ArrayLike, covs: npt.ArrayLike, *, threads: Optional[int] = None
+        self,
+        thetas: npt.ArrayLike,
+        covs: npt.ArrayLike,
+        *,
+        threads: Optional[int] = None,
+        out: Optional[Tuple[npt.NDArray[np.floating], npt.NDArray[np.floating]]] = None,
     ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
