@@ -22,7 +22,25 @@ pub(crate) fn elements<'a, T: Element>(
     name: &str,
     shape: &[usize],
 ) -> PyResult<&'a [T]> {
-    let got = a.shape();
+    check_layout(name, a.shape(), a.is_c_contiguous(), shape)?;
+    a.as_slice().map_err(|_| not_c_contiguous(name))
+}
+
+/// The elements of the writeable array `a`, for results, if its shape is `shape` (as
+/// [`elements`]).
+pub(crate) fn elements_mut<'a, T: Element>(
+    a: &'a mut PyReadwriteArrayDyn<'_, T>,
+    name: &str,
+    shape: &[usize],
+) -> PyResult<&'a mut [T]> {
+    check_layout(name, a.shape(), a.is_c_contiguous(), shape)?;
+    a.as_slice_mut().map_err(|_| not_c_contiguous(name))
+}
+
+/// Refuses an array of shape `got` unless it matches `shape` (`usize::MAX` matches any
+/// length) and is C-contiguous: a slice of a Fortran-ordered array would be read (or
+/// written) transposed.
+fn check_layout(name: &str, got: &[usize], c_contiguous: bool, shape: &[usize]) -> PyResult<()> {
     let ok = got.len() == shape.len()
         && got
             .iter()
@@ -34,33 +52,14 @@ pub(crate) fn elements<'a, T: Element>(
             shape_text(shape)
         )));
     }
-    // as_slice also accepts Fortran order, whose elements would be read transposed.
-    let not_c = || PyValueError::new_err(format!("{name}: array is not C-contiguous"));
-    if !a.is_c_contiguous() {
-        return Err(not_c());
+    if !c_contiguous {
+        return Err(not_c_contiguous(name));
     }
-    a.as_slice().map_err(|_| not_c())
+    Ok(())
 }
 
-/// The elements of the writeable array `a`, for results, if its shape is `shape` and it
-/// is C-contiguous (as [`elements`]).
-pub(crate) fn elements_mut<'a, T: Element>(
-    a: &'a mut PyReadwriteArrayDyn<'_, T>,
-    name: &str,
-    shape: &[usize],
-) -> PyResult<&'a mut [T]> {
-    let got = a.shape();
-    if got != shape {
-        return Err(PyValueError::new_err(format!(
-            "{name}: expected shape {}, got {got:?}",
-            shape_text(shape)
-        )));
-    }
-    let not_c = || PyValueError::new_err(format!("{name}: array is not C-contiguous"));
-    if !a.is_c_contiguous() {
-        return Err(not_c());
-    }
-    a.as_slice_mut().map_err(|_| not_c())
+fn not_c_contiguous(name: &str) -> PyErr {
+    PyValueError::new_err(format!("{name}: array is not C-contiguous"))
 }
 
 fn shape_text(shape: &[usize]) -> String {
