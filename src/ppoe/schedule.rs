@@ -20,6 +20,10 @@
 //! lanes the program leaves undefined (leftovers of earlier code), and on a core with a
 //! slow path for subnormals the two-lane f32 PPOE ran 1.2-1.3x slower than f64 (0.9x
 //! with flush-to-zero set): f32's narrow range underflows in the undefined lanes.
+//! Nor two f32 joints in four lanes whose other two are zero (slower still), nor one
+//! transport with its matrices' rows in lanes (`Ad·Σ` as combinations of Σ's rows, then
+//! `(Ad·Σ)·Adᵀ` as combinations of Adᵀ's): the optimiser splits such packs into scalars
+//! and regroups them with shuffles, and the PPOE executed more instructions.
 //!
 //! Why groups are built as locals: the joints go in groups of W, and each group's W
 //! congruences and covariances are built as local values, then gathered into lanes
