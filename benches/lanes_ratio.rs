@@ -25,21 +25,25 @@ use std::time::Instant;
 
 /// A case by name: the seed example (`seed`, two of its joints without covariance), the
 /// seed chain and the 7-joint arm with a full-rank covariance on every joint as the batch
-/// benchmarks of benches/ops.rs give them (`seed_dense`, `arm7`; the seed's joint values
-/// kept), or a synthetic chain of N joints (`chainN`).
+/// benchmarks of benches/ops.rs give them (`seed_dense` with the seed example's joint
+/// values, `arm7` with the arm's benchmark configuration; `seed_batch`, `arm7_batch` with
+/// the configuration of benches/ops.rs's `batch_*/single`), or a synthetic chain of N
+/// joints (`chainN`).
 fn case<T: Real>(name: &str) -> Case<T> {
+    let dense = |(joints, home): (Vec<ppoe::chain::Joint<T>>, _), thetas: Option<Vec<T>>| {
+        let n = joints.len();
+        let thetas = thetas.unwrap_or_else(|| robots::batch_thetas(1, n));
+        (joints, home, thetas, robots::arm7_covs(n))
+    };
+    let arm7 = || robots::core_chain(&robots::robot_chain(&robots::ARM7));
     match name {
         "seed" => seed_case(),
-        "seed_dense" => {
+        "seed_dense" | "seed_batch" => {
             let (joints, home, thetas, _) = seed_case();
-            let covs = robots::arm7_covs(joints.len());
-            (joints, home, thetas, covs)
+            dense((joints, home), (name == "seed_dense").then_some(thetas))
         }
-        "arm7" => {
-            let (joints, home) = robots::core_chain(&robots::robot_chain(&robots::ARM7));
-            let covs = robots::arm7_covs(joints.len());
-            (joints, home, robots::arm7_thetas(), covs)
-        }
+        "arm7" => dense(arm7(), Some(robots::arm7_thetas())),
+        "arm7_batch" => dense(arm7(), None),
         n => synthetic_case(n.trim_start_matches("chain").parse().expect("chainN")),
     }
 }
@@ -81,7 +85,16 @@ fn median(v: &mut [f64]) -> f64 {
 }
 
 /// The marginal-cost lines below read `chain6`, `chain7`, `chain8` at indices 1, 2, 3.
-const CASES: [&str; 6] = ["seed", "chain6", "chain7", "chain8", "seed_dense", "arm7"];
+const CASES: [&str; 8] = [
+    "seed",
+    "chain6",
+    "chain7",
+    "chain8",
+    "seed_dense",
+    "arm7",
+    "seed_batch",
+    "arm7_batch",
+];
 /// Lane widths timed: 0 = the target's choice (`ChainView::ppoe`).
 #[cfg(ppoe_bench_lanes)]
 const LANES: [usize; 4] = [0, 1, 2, 4];

@@ -333,20 +333,6 @@ fn arm7_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
 /// the batch's time by it.
 const BATCH: usize = 256;
 
-/// `BATCH` configurations of `n` joints, row-major, uniform in [−1, 1] (inside every limit
-/// of the seed and the 7-joint arm), from a fixed seed.
-fn batch_thetas<T: Real>(n: usize) -> Vec<T> {
-    let mut x = 0x9e37_79b9_7f4a_7c15u64;
-    (0..BATCH * n)
-        .map(|_| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            T::lit((x >> 11) as f64 / (1u64 << 52) as f64 - 1.0)
-        })
-        .collect()
-}
-
 /// The batch PPOE against single calls and the nalgebra port, dense covariances on every
 /// joint (`robots::arm7_covs`), on the seed and the 7-joint arm: `batch_<robot>/<impl>/<T>`,
 /// `batch` timing one call on `BATCH` configurations, the others one configuration.
@@ -361,7 +347,7 @@ fn batch_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
         };
         let n = joints.len();
         let covs = robots::arm7_covs::<T>(n);
-        let thetas = batch_thetas::<T>(n);
+        let thetas = robots::batch_thetas::<T>(BATCH, n);
         let mut out = vec![UncertainPose::certain(Transform::identity()); BATCH];
         c.bench_function(&format!("batch_{name}/batch/{t}"), |b| {
             b.iter(|| chain.ppoe_batch(black_box(&thetas), &covs, Convention::Right, &mut out))

@@ -145,6 +145,7 @@ def selftest():
     assert "Not measured" in render_lanes_ratio("error: cargo bench --bench lanes_ratio failed")[2]
     lt = lanes_target_rows(lr.replace("seed  ", "arm7  ") + "seed_dense 0 | 300.0 | 306.0 | 1.020\n")
     assert lt[0].endswith("| 1.020 | **missed** by 2.0% |") and lt[1].endswith("| 0.996 | met |"), lt
+    assert len(lt) == 4 and "batch table's configuration" in lt[2] and "0.996" not in lt[2], lt
     alt = ("round 1\n"
            "pinocchio_batch robot=seed joints=6 ns_per_config=200.00 configs=256 batches=21\n"
            "pinocchio_batch robot=arm7 joints=7 ns_per_config=250.00 configs=256 batches=21\n"
@@ -567,7 +568,10 @@ def render_lanes_ratio(text):
     L.append("`ChainView::ppoe` calls in f64 then in f32 for every case, so that load from other work")
     L.append("falls on both alike; ns per call are medians over rounds, the ratio is the median of the")
     L.append("rounds' own f32/f64 ratios (below 1: f32 faster). `seed_dense` and `arm7` have the batch")
-    L.append("table's dense covariances; `seed` the seed example's; `chainN` a synthetic N-joint chain.")
+    L.append("table's dense covariances with the seed example's joint values and the arm's benchmark")
+    L.append("configuration; `seed_batch` and `arm7_batch` the same covariances with the configuration")
+    L.append("of the batch table's single-call column; `seed` the seed example's covariances; `chainN`")
+    L.append("a synthetic N-joint chain.")
     L.append("")
     L.append("| case | f64 ns | f32 ns | f32 / f64 (median of rounds) |")
     L.append("|---|---:|---:|---:|")
@@ -751,7 +755,9 @@ def lanes_target_rows(text):
     medians the rows above compare (timed minutes apart)."""
     rows = lanes_ratio_rows(text)
     L = []
-    for robot, case in (("seed", "seed_dense"), ("7-joint arm", "arm7")):
+    for robot, case in (("seed", "seed_dense"), ("7-joint arm", "arm7"),
+                        ("seed, batch table's configuration", "seed_batch"),
+                        ("7-joint arm, batch table's configuration", "arm7_batch")):
         name = "host f32/f64 time, dense, single call, %s, interleaved in one process" % robot
         L.append(at_most_one_row(name, rows[case][2] if case in rows else None, 3))
     return L

@@ -1,5 +1,6 @@
 //! Benchmark robots read from test_data/urdf with ppoe-build, the way a firmware build script
-//! reads them, and their inputs. Shared by benches/ops.rs, benches/rank1.rs and the
+//! reads them, and their inputs. Shared by benches/ops.rs, benches/rank1.rs,
+//! benches/lanes_ratio.rs and the
 //! Pinocchio export (benches/pinocchio/export.rs), so that every benchmark of a robot runs
 //! the same chain.
 //!
@@ -73,6 +74,21 @@ pub fn core_chain<T: Real>(rc: &ppoe_build::RobotChain) -> (Vec<Joint<T>>, Trans
 /// The 7-joint arm's benchmark configuration (inside every limit, no joint at zero).
 pub fn arm7_thetas<T: Real>() -> Vec<T> {
     [0.1, -0.4, 0.2, -2.0, 0.3, 1.6, 0.5].map(T::lit).to_vec()
+}
+
+/// `count` configurations of `n` joints, row-major, uniform in [−1, 1] (inside every limit
+/// of the seed and the 7-joint arm), from a fixed seed: the batch benchmarks' inputs, whose
+/// first configuration is also their single-call one.
+pub fn batch_thetas<T: Real>(count: usize, n: usize) -> Vec<T> {
+    let mut x = 0x9e37_79b9_7f4a_7c15u64;
+    (0..count * n)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            T::lit((x >> 11) as f64 / (1u64 << 52) as f64 - 1.0)
+        })
+        .collect()
 }
 
 /// Full-rank joint covariances for an n-joint chain: standard deviations of 0.8 to 1.5
