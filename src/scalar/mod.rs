@@ -183,9 +183,9 @@ impl Real for f32 {
     ///
     /// Method: for |x| ≤ π/4 the Cephes minimax polynomials for sin and cos (Moshier,
     /// *Methods and Programs for Mathematical Functions*, 1989) directly, evaluated by
-    /// Estrin's scheme, and `(x, 1)` for |x| ≤ 2⁻¹² (the polynomials' own bits there); up to |x| = 10⁴
-    /// a Cody–Waite reduction by π/2 with a three-part constant (exact products for
-    /// |k| < 2¹⁵) first; beyond, a Payne–Hanek reduction in 64-bit integers
+    /// Estrin's scheme, and `(x, 1)` for |x| ≤ 2⁻¹² (the polynomials' own bits there); up
+    /// to |x| = 10⁴ a Cody–Waite reduction by π/2 with a three-part constant (exact
+    /// products for |k| < 2¹⁵) first; beyond, a Payne–Hanek reduction in 64-bit integers
     /// (`reduce_pio2_f32`).
     ///
     /// # Accuracy
