@@ -30,20 +30,31 @@ use std::time::Instant;
 /// the configuration of benches/ops.rs's `batch_*/single`), or a synthetic chain of N
 /// joints (`chainN`).
 fn case<T: Real>(name: &str) -> Case<T> {
-    let dense = |(joints, home): (Vec<ppoe::chain::Joint<T>>, _), thetas: Option<Vec<T>>| {
-        let n = joints.len();
-        let thetas = thetas.unwrap_or_else(|| robots::batch_thetas(1, n));
-        (joints, home, thetas, robots::arm7_covs(n))
+    let dense = |joints: Vec<ppoe::chain::Joint<T>>, home, thetas| {
+        let covs = robots::arm7_covs(joints.len());
+        (joints, home, thetas, covs)
     };
     let arm7 = || robots::core_chain(&robots::robot_chain(&robots::ARM7));
     match name {
         "seed" => seed_case(),
-        "seed_dense" | "seed_batch" => {
+        "seed_dense" => {
             let (joints, home, thetas, _) = seed_case();
-            dense((joints, home), (name == "seed_dense").then_some(thetas))
+            dense(joints, home, thetas)
         }
-        "arm7" => dense(arm7(), Some(robots::arm7_thetas())),
-        "arm7_batch" => dense(arm7(), None),
+        "seed_batch" => {
+            let (joints, home, _, _) = seed_case();
+            let thetas = robots::batch_thetas(1, joints.len());
+            dense(joints, home, thetas)
+        }
+        "arm7" => {
+            let (joints, home) = arm7();
+            dense(joints, home, robots::arm7_thetas())
+        }
+        "arm7_batch" => {
+            let (joints, home) = arm7();
+            let thetas = robots::batch_thetas(1, joints.len());
+            dense(joints, home, thetas)
+        }
         n => synthetic_case(n.trim_start_matches("chain").parse().expect("chainN")),
     }
 }

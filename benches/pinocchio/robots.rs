@@ -1,8 +1,7 @@
 //! Benchmark robots read from test_data/urdf with ppoe-build, the way a firmware build script
 //! reads them, and their inputs. Shared by benches/ops.rs, benches/rank1.rs,
-//! benches/lanes_ratio.rs and the
-//! Pinocchio export (benches/pinocchio/export.rs), so that every benchmark of a robot runs
-//! the same chain.
+//! benches/lanes_ratio.rs and the Pinocchio export (benches/pinocchio/export.rs), so that
+//! every benchmark of a robot runs the same chain.
 //!
 //! ppoe-build links its own copy of ppoe (a dev-dependency cycle), so only its plain `f64`
 //! arrays cross over; the joints are rebuilt here with this crate's types, as the
