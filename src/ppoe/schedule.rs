@@ -57,8 +57,9 @@
 //! The rounding: with W lanes the transported covariances are summed in W partial sums,
 //! added at the end (`Sums::total`), so results of different widths differ by a few ε of
 //! the covariance's size. Every width is compiled and compared on every host by the unit
-//! tests (`lane_tests.rs` beside this file), so the one-lane schedule of the Cortex-M
-//! targets is tested by `cargo test` as well as in QEMU; the `lanes_ratio` benchmark
+//! tests (`lane_tests.rs` beside this file), so the one-lane schedule is tested by
+//! `cargo test` (in the form of the SIMD hosts, see [`Sums::add`]; the scalar-FPU targets'
+//! form runs in QEMU); the `lanes_ratio` benchmark
 //! times them (built with `--cfg ppoe_bench_lanes`, see [`with_lanes`]).
 //!
 //! Private because it is a performance decision with no effect on the result's
@@ -177,7 +178,8 @@ fn ppoe_lanes<T: Real, const W: usize>(
 }
 
 /// The lower triangles of the transported covariances, summed: W partial sums in lanes,
-/// and one for the joints of the last, incomplete group.
+/// and one for the joints of the last, incomplete group (with one lane on a SIMD target,
+/// for every joint).
 struct Sums<T, const W: usize> {
     lanes: [[Pack<T, W>; 6]; 6],
     tail: [[T; 6]; 6],
@@ -189,7 +191,17 @@ impl<T: Real, const W: usize> Sums<T, W> {
     /// slots hold zero congruences and covariances); else one lane at a time.
     #[inline(always)]
     fn add(&mut self, group: &[(Congruence<T>, &Mat6<T>); W], filled: usize) {
-        if filled == W || (W > 2 && 2 * filled > W) {
+        if W == 1 && SIMD128 {
+            // One lane on a SIMD target (f32 on x86-64): the scalar transport reads the
+            // covariance where it is. Gathered into one-lane packs, it was copied to the
+            // stack and read back by loads spanning two of the copy's stores
+            // (store-forwarding stalls, every joint). Not on the scalar-FPU targets: there
+            // the gathered form compiled to less stack for software f64 (the firmware's
+            // budgets).
+            if let (1, Some((c, cov))) = (filled, group.first()) {
+                c.add_lower(cov, &mut self.tail);
+            }
+        } else if filled == W || (W > 2 && 2 * filled > W) {
             Congruence::add_lower_packed(group, &mut self.lanes);
         } else if W > 1 {
             for (c, cov) in group.iter().take(filled) {
@@ -201,8 +213,12 @@ impl<T: Real, const W: usize> Sums<T, W> {
     /// The sum over the lanes and the tail, mirrored: exactly symmetric.
     #[inline(always)]
     fn total(&self) -> Mat6<T> {
-        // With one lane there is no tail (every group is full): starting from zeros lets
-        // the optimiser drop it.
+        // One lane on a SIMD target: every transport went to the tail (see `add`).
+        if W == 1 && SIMD128 {
+            return mirror_lower(self.tail);
+        }
+        // One lane elsewhere: no tail (every group is full); starting from zeros lets the
+        // optimiser drop it.
         let mut acc = [[T::ZERO; 6]; 6];
         for ((arow, lrow), trow) in acc.iter_mut().zip(&self.lanes).zip(&self.tail) {
             for ((a, l), t) in arow.iter_mut().zip(lrow).zip(trow) {
