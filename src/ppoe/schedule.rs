@@ -58,7 +58,7 @@
 //! added at the end (`Sums::total`), so results of different widths differ by a few ε of
 //! the covariance's size. Every width is compiled and compared on every host by the unit
 //! tests (`lane_tests.rs` beside this file), so the one-lane schedule is tested by
-//! `cargo test` (in the form of the SIMD hosts, see [`Sums::add`]; the scalar-FPU targets'
+//! `cargo test` (in the form of the SIMD hosts, see `Sums::IN_PLACE`; the scalar-FPU targets'
 //! form runs in QEMU); the `lanes_ratio` benchmark
 //! times them (built with `--cfg ppoe_bench_lanes`, see [`with_lanes`]).
 //!
@@ -186,18 +186,21 @@ struct Sums<T, const W: usize> {
 }
 
 impl<T: Real, const W: usize> Sums<T, W> {
-    /// Adds the transports of `group`'s first `filled` entries: in lanes together when
-    /// all W are filled or, with more than two lanes, more than half of them (the empty
-    /// slots hold zero congruences and covariances); else one lane at a time.
+    /// One lane on a SIMD target (f32 on x86-64): each transport reads its covariance in
+    /// place and goes to the tail, the lanes stay zero. Gathered into one-lane packs, the
+    /// covariance was copied to the stack and read back by loads spanning two of the
+    /// copy's stores (store-forwarding stalls, every joint). Not on the scalar-FPU
+    /// targets: there the gathered form compiled to less stack for software f64 (the
+    /// firmware's budgets).
+    const IN_PLACE: bool = W == 1 && SIMD128;
+
+    /// Adds the transports of `group`'s first `filled` entries: in place to the tail if
+    /// [`Self::IN_PLACE`]; else in lanes together when all W are filled or, with more than
+    /// two lanes, more than half of them (the empty slots hold zero congruences and
+    /// covariances); else one lane at a time.
     #[inline(always)]
     fn add(&mut self, group: &[(Congruence<T>, &Mat6<T>); W], filled: usize) {
-        if W == 1 && SIMD128 {
-            // One lane on a SIMD target (f32 on x86-64): the scalar transport reads the
-            // covariance where it is. Gathered into one-lane packs, it was copied to the
-            // stack and read back by loads spanning two of the copy's stores
-            // (store-forwarding stalls, every joint). Not on the scalar-FPU targets: there
-            // the gathered form compiled to less stack for software f64 (the firmware's
-            // budgets).
+        if Self::IN_PLACE {
             if let (1, Some((c, cov))) = (filled, group.first()) {
                 c.add_lower(cov, &mut self.tail);
             }
@@ -213,8 +216,7 @@ impl<T: Real, const W: usize> Sums<T, W> {
     /// The sum over the lanes and the tail, mirrored: exactly symmetric.
     #[inline(always)]
     fn total(&self) -> Mat6<T> {
-        // One lane on a SIMD target: every transport went to the tail (see `add`).
-        if W == 1 && SIMD128 {
+        if Self::IN_PLACE {
             return mirror_lower(self.tail);
         }
         // One lane elsewhere: no tail (every group is full); starting from zeros lets the
