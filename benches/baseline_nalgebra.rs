@@ -2,6 +2,11 @@
 //! a Rust user would port pytransform3d's example (`probabilistic_forward_kinematics`:
 //! per joint `T ← T·Dᵢ` and `C ← Ad(Dᵢ⁻¹)·C·Ad(Dᵢ⁻¹)ᵀ + Σᵢ` with dense matrices, then the
 //! home pose).
+//!
+//! Two ports, differing only in how they invert a transform: [`ppoe`] with nalgebra's
+//! general 4×4 inverse, as pytransform3d's `invert_transform` does (LU), and
+//! [`ppoe_closed_form`] with the rigid transform's closed form `(Rᵀ, −Rᵀp)`, which a port
+//! may equally use (it agrees to about 1 ulp) and which costs far less.
 
 use nalgebra::{Matrix3, Matrix4, Matrix6, RealField, Vector3, Vector6};
 
@@ -59,11 +64,34 @@ pub fn adjoint<T: RealField + Copy>(m: &Matrix4<T>) -> Matrix6<T> {
     a
 }
 
-/// The PPOE with the right-perturbation last step `Ad(M⁻¹)`.
+/// The PPOE with the right-perturbation last step `Ad(M⁻¹)`, transforms inverted as
+/// general 4×4 matrices.
 pub fn ppoe<T: RealField + Copy>(
     chain: &NaChain<T>,
     thetas: &[T],
     covs: &[Matrix6<T>],
+) -> (Matrix4<T>, Matrix6<T>) {
+    ppoe_with(chain, thetas, covs, |m| {
+        m.try_inverse().unwrap_or_else(Matrix4::identity)
+    })
+}
+
+/// [`ppoe`] with the transforms inverted by the closed form `(Rᵀ, −Rᵀp)`.
+pub fn ppoe_closed_form<T: RealField + Copy>(
+    chain: &NaChain<T>,
+    thetas: &[T],
+    covs: &[Matrix6<T>],
+) -> (Matrix4<T>, Matrix6<T>) {
+    ppoe_with(chain, thetas, covs, rigid_inverse)
+}
+
+/// The PPOE with `inverse` for the inverse transforms.
+#[inline(always)]
+fn ppoe_with<T: RealField + Copy>(
+    chain: &NaChain<T>,
+    thetas: &[T],
+    covs: &[Matrix6<T>],
+    inverse: impl Fn(&Matrix4<T>) -> Matrix4<T>,
 ) -> (Matrix4<T>, Matrix6<T>) {
     let mut t: Matrix4<T> = Matrix4::identity();
     let mut c: Matrix6<T> = Matrix6::zeros();
@@ -71,9 +99,19 @@ pub fn ppoe<T: RealField + Copy>(
         let th = thetas[i].clamp(chain.lower[i], chain.upper[i]);
         let d = exp(&(chain.screws[i] * th));
         t *= d;
-        let g = adjoint(&d.try_inverse().unwrap_or_else(Matrix4::identity));
+        let g = adjoint(&inverse(&d));
         c = g * c * g.transpose() + covs[i];
     }
-    let g = adjoint(&chain.home.try_inverse().unwrap_or_else(Matrix4::identity));
+    let g = adjoint(&inverse(&chain.home));
     (t * chain.home, g * c * g.transpose())
+}
+
+/// The inverse of a rigid transform by its closed form: rotation Rᵀ, translation −Rᵀp.
+fn rigid_inverse<T: RealField + Copy>(m: &Matrix4<T>) -> Matrix4<T> {
+    let rt: Matrix3<T> = m.fixed_view::<3, 3>(0, 0).transpose();
+    let p: Vector3<T> = m.fixed_view::<3, 1>(0, 3).into();
+    let mut inv = Matrix4::identity();
+    inv.fixed_view_mut::<3, 3>(0, 0).copy_from(&rt);
+    inv.fixed_view_mut::<3, 1>(0, 3).copy_from(&(-(rt * p)));
+    inv
 }

@@ -265,7 +265,7 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     let _ = Matrix::<T, 1, 1>::zeros();
 }
 
-/// Panics unless the nalgebra port gives ppoe's pose and covariance (within 1000 ε).
+/// Panics unless both nalgebra ports give ppoe's pose and covariance (within 1000 ε).
 fn check_nalgebra<T: Real + nalgebra::RealField>(
     chain: &ChainView<'_, T>,
     na: &baseline_nalgebra::NaChain<T>,
@@ -273,7 +273,27 @@ fn check_nalgebra<T: Real + nalgebra::RealField>(
     covs: &[Mat6<T>],
     na_covs: &[nalgebra::Matrix6<T>],
 ) {
-    let (na_pose, na_cov) = baseline_nalgebra::ppoe(na, thetas, na_covs);
+    check_port(
+        chain,
+        baseline_nalgebra::ppoe(na, thetas, na_covs),
+        thetas,
+        covs,
+    );
+    check_port(
+        chain,
+        baseline_nalgebra::ppoe_closed_form(na, thetas, na_covs),
+        thetas,
+        covs,
+    );
+}
+
+/// Panics unless `(na_pose, na_cov)` is ppoe's pose and covariance (within 1000 ε).
+fn check_port<T: Real + nalgebra::RealField>(
+    chain: &ChainView<'_, T>,
+    (na_pose, na_cov): (nalgebra::Matrix4<T>, nalgebra::Matrix6<T>),
+    thetas: &[T],
+    covs: &[Mat6<T>],
+) {
     let ours = chain.ppoe(thetas, covs, Convention::Right).unwrap();
     // Relative to the largest entry: an absolute 1000 ε would pass any f32 covariance of
     // the 7-joint arm, whose entries are ~1e-6.
@@ -333,9 +353,10 @@ fn arm7_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
 /// the batch's time by it.
 const BATCH: usize = 256;
 
-/// The batch PPOE against single calls and the nalgebra port, dense covariances on every
+/// The batch PPOE against single calls and the nalgebra ports, dense covariances on every
 /// joint (`robots::arm7_covs`), on the seed and the 7-joint arm: `batch_<robot>/<impl>/<T>`,
-/// `batch` timing one call on `BATCH` configurations, the others one configuration.
+/// `batch` timing one call on `BATCH` configurations, the others one configuration
+/// (`nalgebra`: general 4×4 inverses, `nalgebra_closed`: the closed form).
 fn batch_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     let t = ty::<T>();
     let seed = seed_chain::<T>(&golden_seed());
@@ -360,6 +381,9 @@ fn batch_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
         check_nalgebra(&chain, &na, one, &covs, &na_covs);
         c.bench_function(&format!("batch_{name}/nalgebra/{t}"), |b| {
             b.iter(|| baseline_nalgebra::ppoe(&na, black_box(one), &na_covs))
+        });
+        c.bench_function(&format!("batch_{name}/nalgebra_closed/{t}"), |b| {
+            b.iter(|| baseline_nalgebra::ppoe_closed_form(&na, black_box(one), &na_covs))
         });
     }
 }

@@ -389,24 +389,28 @@ def batch_ns(crit, key, impl, t):
 
 
 def render_batch(crit, pin_text):
-    """Batch PPOE per configuration against single calls, the nalgebra port and Pinocchio's
+    """Batch PPOE per configuration against single calls, the nalgebra ports and Pinocchio's
     FK, dense covariances on every joint (benches/ops.rs, batch_ops)."""
     pin = pinocchio_batch_ns(pin_text)
     L = ["## Batch PPOE: many configurations per call, dense covariances on every joint", ""]
     L.append("`ChainView::ppoe_batch` on %d configurations (uniform in [−1, 1] per joint) per call, its" % BATCH)
-    L.append("time divided by %d, against a single `ChainView::ppoe` call, the dense nalgebra port and" % BATCH)
+    L.append("time divided by %d, against a single `ChainView::ppoe` call, the dense nalgebra ports and" % BATCH)
     L.append("Pinocchio's rigid FK (the harness above, cycling through %d configurations of the same" % BATCH)
     L.append("distribution: its `pinocchio_batch` lines), ns per configuration (criterion medians);")
     L.append("every joint has a full-rank covariance (`robots::arm7_covs`), right perturbation, default target.")
+    L.append("The two nalgebra ports (benches/baseline_nalgebra.rs) differ only in how they invert a")
+    L.append("transform: *4×4 inv* as pytransform3d does (a general matrix inverse), *closed form*")
+    L.append("with `(Rᵀ, −Rᵀp)`, which a port may as well use and which is the faster baseline.")
     L.append("")
-    L.append("| robot | scalar | batch PPOE / config | single PPOE | nalgebra port PPOE | Pinocchio FK f64 | batch / Pinocchio FK | single / batch | nalgebra / single |")
-    L.append("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+    L.append("| robot | scalar | batch PPOE / config | single PPOE | nalgebra port, 4×4 inv | nalgebra port, closed form | Pinocchio FK f64 | batch / Pinocchio FK | single / batch | 4×4 inv port / single | closed-form port / single |")
+    L.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for robot, key, pkey in (("seed", "seed", "seed"), ("7-joint arm", "7dof", "arm7")):
         for t in ("f64", "f32"):
-            b, s1, na = (batch_ns(crit, key, i, t) for i in ("batch", "single", "nalgebra"))
+            b, s1, na, nc = (batch_ns(crit, key, i, t) for i in ("batch", "single", "nalgebra", "nalgebra_closed"))
             pf = pin.get(pkey)
-            L.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-                robot, t, ns(b), ns(s1), ns(na), ns(pf), ratio(b, pf), ratio(s1, b), ratio(na, s1)))
+            L.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                robot, t, ns(b), ns(s1), ns(na), ns(nc), ns(pf), ratio(b, pf), ratio(s1, b),
+                ratio(na, s1), ratio(nc, s1)))
     L.append("")
     return L
 
@@ -737,8 +741,10 @@ def target_rows(crit, pin_text):
         b = lambda i, t: batch_ns(crit, key, i, t)
         at_most("host f64 batch PPOE per configuration / Pinocchio FK, dense, %s" % robot, 1.0,
                 q(b("batch", "f64"), pin_batch.get(pkey)))
-        at_least("host f64 single PPOE vs the nalgebra port, dense, %s" % robot, 3,
+        at_least("host f64 single PPOE vs the nalgebra port (4×4 inv), dense, %s" % robot, 3,
                  q(b("nalgebra", "f64"), b("single", "f64")))
+        at_least("host f64 single PPOE vs the nalgebra port (closed-form inverse), dense, %s" % robot, 3,
+                 q(b("nalgebra_closed", "f64"), b("single", "f64")))
         at_most("host f32/f64 time, dense, single call, %s" % robot, 1, q(b("single", "f32"), b("single", "f64")))
         at_most("host f32/f64 time, dense, batch, %s" % robot, 1, q(b("batch", "f32"), b("batch", "f64")))
     for robot, key in (("seed", "seed"), ("7-joint arm", "7dof")):
