@@ -1,6 +1,6 @@
 //! The PPOE for joint-value noise only: one variance per joint along its own screw axis.
 //!
-//! With `covsᵢ = σᵢ²·SᵢSᵢᵀ` ([`screw_noise`](crate::chain::screw_noise)), every term of the
+//! With `covsᵢ = σᵢ²·SᵢSᵢᵀ` ([`chain::screw_noise`](crate::chain::screw_noise)), every term of the
 //! PPOE's sum is rank one: `Ad(X)·σᵢ²SᵢSᵢᵀ·Ad(X)ᵀ = σᵢ²·(Ad(X)·Sᵢ)(Ad(X)·Sᵢ)ᵀ`. So the
 //! screw axis is transported (a 6-vector, 18 multiplications) instead of a 6×6 matrix, and
 //! the sum is 21 multiply-adds per joint. The transported axes are the columns of the body
@@ -127,7 +127,7 @@ fn rank1_checked<T: Real>(
 impl<T: Real> ChainView<'_, T> {
     /// The PPOE for joint-value noise, unchecked: the same pose and covariance as
     /// [`ChainView::ppoe`] with `covsᵢ = σᵢ²·SᵢSᵢᵀ`
-    /// ([`screw_noise`](crate::chain::screw_noise)), `sigma2[i]` = σᵢ² the variance of
+    /// ([`chain::screw_noise`](crate::chain::screw_noise)), `sigma2[i]` = σᵢ² the variance of
     /// joint i's value (rad² or m²), computed with one 6-vector per joint instead of a 6×6
     /// matrix: every term of the sum is rank one, `σᵢ²·uᵢuᵢᵀ` with uᵢ the transported screw
     /// axis, a column of the body Jacobian (Right: `Ad(Gᵢ⁻¹)·Sᵢ`, `Gᵢ = Dᵢ₊₁…Dₙ·M`) or of
@@ -214,7 +214,7 @@ impl<T: Real, const N: usize> Chain<T, N> {
 }
 
 /// The covariance of joint-value noise as the dense path takes it: `σᵢ²·SᵢSᵢᵀ` per joint
-/// ([`screw_noise`](crate::chain::screw_noise)), for comparing both paths.
+/// ([`chain::screw_noise`](crate::chain::screw_noise)), for comparing both paths.
 pub fn dense_covariances<T: Real, const N: usize>(
     chain: &Chain<T, N>,
     sigma2: &[T; N],

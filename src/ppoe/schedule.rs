@@ -60,7 +60,7 @@
 //! tests (`lane_tests.rs` beside this file), so the one-lane schedule is tested by
 //! `cargo test` (in the form of the SIMD hosts, see `Sums::IN_PLACE`; the scalar-FPU targets'
 //! form runs in QEMU); the `lanes_ratio` benchmark
-//! times them (built with `--cfg ppoe_bench_lanes`, see [`with_lanes`]).
+//! times them (built with `--cfg ppoe_bench_lanes`, see `with_lanes`).
 //!
 //! Private because it is a performance decision with no effect on the result's
 //! definition: the public entry points and their accuracy do not change when it changes;
