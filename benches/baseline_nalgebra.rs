@@ -11,6 +11,7 @@
 use nalgebra::{Matrix3, Matrix4, Matrix6, RealField, Vector3, Vector6};
 
 /// Screw axes (rotation first), home pose and limits, as dense nalgebra types.
+#[derive(Clone)]
 pub struct NaChain<T: RealField + Copy> {
     pub screws: Vec<Vector6<T>>,
     pub home: Matrix4<T>,

@@ -235,6 +235,9 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     c.bench_function(&format!("ppoe_seed/nalgebra/{t}"), |b| {
         b.iter(|| baseline_nalgebra::ppoe(&na, black_box(&thetas), &na_covs))
     });
+    c.bench_function(&format!("ppoe_seed/nalgebra_closed/{t}"), |b| {
+        b.iter(|| baseline_nalgebra::ppoe_closed_form(&na, black_box(&thetas), &na_covs))
+    });
 
     arm7_ops::<T>(c);
 
@@ -343,6 +346,9 @@ fn arm7_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     });
     c.bench_function(&format!("ppoe_7dof/nalgebra/{t}"), |b| {
         b.iter(|| baseline_nalgebra::ppoe(&na, black_box(&thetas), &na_covs))
+    });
+    c.bench_function(&format!("ppoe_7dof/nalgebra_closed/{t}"), |b| {
+        b.iter(|| baseline_nalgebra::ppoe_closed_form(&na, black_box(&thetas), &na_covs))
     });
     c.bench_function(&format!("fk_7dof/ours/{t}"), |b| {
         b.iter(|| chain.forward_kinematics(black_box(&thetas)))
@@ -508,8 +514,12 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
         };
         chain.forward_kinematics(black_box(&thetas))
     }));
+    let (na2, thetas2, na_covs2) = (na.clone(), thetas, na_covs.clone());
     v.push(op(format!("ppoe_seed/nalgebra/{t}"), move || {
         baseline_nalgebra::ppoe(&na, black_box(&thetas), &na_covs)
+    }));
+    v.push(op(format!("ppoe_seed/nalgebra_closed/{t}"), move || {
+        baseline_nalgebra::ppoe_closed_form(&na2, black_box(&thetas2), &na_covs2)
     }));
     v.extend(arm7_callgrind_ops::<T>());
     v.extend(chain_callgrind_ops::<T>());
@@ -565,9 +575,13 @@ fn arm7_callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
         };
         chain.ppoe(black_box(&ath1), &acov1, Convention::Right)
     }));
-    let ath2 = ath.clone();
+    let (ath2, ath3) = (ath.clone(), ath.clone());
+    let (ana3, ana_covs3) = (ana.clone(), ana_covs.clone());
     v.push(op(format!("ppoe_7dof/nalgebra/{t}"), move || {
         baseline_nalgebra::ppoe(&ana, black_box(&ath2), &ana_covs)
+    }));
+    v.push(op(format!("ppoe_7dof/nalgebra_closed/{t}"), move || {
+        baseline_nalgebra::ppoe_closed_form(&ana3, black_box(&ath3), &ana_covs3)
     }));
     v.push(op(format!("fk_7dof/ours/{t}"), move || {
         let chain = ChainView {

@@ -330,21 +330,24 @@ def render_robots(crit, pin_text, ir):
     pin_ir = {r["robot"]: float(r["ir_per_call"]) for r in kv_lines(pin_text, "pinocchio_ir")}
     err = step_error(pin_text)
     ver = (kv_lines(pin_text, "versions") or [{}])[0]
-    L = ["## Seed robot (6 joints) and 7-joint arm: ppoe, the nalgebra port and Pinocchio", ""]
+    L = ["## Seed robot (6 joints) and 7-joint arm: ppoe, the nalgebra ports and Pinocchio", ""]
     L.append("Nanoseconds per call (criterion medians; Pinocchio: median of the harness's batches).")
     L.append("The 7-joint arm is test_data/urdf/arm7.urdf (full-rank, correlated joint covariances,")
     L.append("benches/pinocchio/robots.rs); PPOE = `ChainView::ppoe`, second order, right perturbation.")
+    L.append("The nalgebra ports invert transforms as general 4×4 matrices (*4×4 inv*, as pytransform3d")
+    L.append("does) or by the closed form `(Rᵀ, −Rᵀp)` (*closed*, the faster baseline).")
     L.append("")
-    L.append("| robot | ppoe PPOE f64 | ppoe PPOE f32 | ppoe FK f64 | ppoe FK f32 | nalgebra port PPOE f64 | Pinocchio FK f64 | nalgebra / ppoe PPOE (f64) | ppoe PPOE / Pinocchio FK | ppoe FK / Pinocchio FK |")
-    L.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    L.append("| robot | ppoe PPOE f64 | ppoe PPOE f32 | ppoe FK f64 | ppoe FK f32 | nalgebra port f64, 4×4 inv | nalgebra port f64, closed | Pinocchio FK f64 | 4×4 inv port / ppoe PPOE (f64) | closed port / ppoe PPOE (f64) | ppoe PPOE / Pinocchio FK | ppoe FK / Pinocchio FK |")
+    L.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for robot, key, pkey in (("seed", "seed", "seed"), ("7-joint arm", "7dof", "arm7")):
         g = lambda k: crit.get(k)
         p64, p32 = g("ppoe_%s/ours/f64" % key), g("ppoe_%s/ours/f32" % key)
         f64_, f32_ = g("fk_%s/ours/f64" % key), g("fk_%s/ours/f32" % key)
         n64, pf = g("ppoe_%s/nalgebra/f64" % key), pin.get(pkey)
-        L.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            robot, ns(p64), ns(p32), ns(f64_), ns(f32_), ns(n64), ns(pf), ratio(n64, p64),
-            ratio(p64, pf), ratio(f64_, pf)))
+        c64 = g("ppoe_%s/nalgebra_closed/f64" % key)
+        L.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            robot, ns(p64), ns(p32), ns(f64_), ns(f32_), ns(n64), ns(c64), ns(pf), ratio(n64, p64),
+            ratio(c64, p64), ratio(p64, pf), ratio(f64_, pf)))
     L.append("")
     if pin:
         L.append("Pinocchio %s (pip package `pin`), `pinocchio::forwardKinematics(model, data, q)` in C++"
@@ -366,14 +369,15 @@ def render_robots(crit, pin_text, ir):
         L.append("Instructions per call, f64 (callgrind; Pinocchio: whole runs of the harness with 1000 and")
         L.append("21000 calls, the difference / 20000):")
         L.append("")
-        L.append("| robot | ppoe PPOE | ppoe FK | nalgebra port PPOE | Pinocchio FK | ppoe PPOE / Pinocchio FK |")
-        L.append("|---|---:|---:|---:|---:|---:|")
+        L.append("| robot | ppoe PPOE | ppoe FK | nalgebra port, 4×4 inv | nalgebra port, closed | Pinocchio FK | ppoe PPOE / Pinocchio FK |")
+        L.append("|---|---:|---:|---:|---:|---:|---:|")
         for robot, key, pkey in (("seed", "seed", "seed"), ("7-joint arm", "7dof", "arm7")):
             a = ir.get("ppoe_%s/ours/f64" % key)
             n0 = lambda v: "—" if v is None else "%.0f" % v
-            L.append("| %s | %s | %s | %s | %s | %s |" % (
+            L.append("| %s | %s | %s | %s | %s | %s | %s |" % (
                 robot, n0(a), n0(ir.get("fk_%s/ours/f64" % key)),
-                n0(ir.get("ppoe_%s/nalgebra/f64" % key)), n0(pin_ir.get(pkey)), ratio(a, pin_ir.get(pkey))))
+                n0(ir.get("ppoe_%s/nalgebra/f64" % key)), n0(ir.get("ppoe_%s/nalgebra_closed/f64" % key)),
+                n0(pin_ir.get(pkey)), ratio(a, pin_ir.get(pkey))))
         L.append("")
     return L
 
@@ -732,8 +736,10 @@ def target_rows(crit, pin_text):
 
     for robot, key, pkey in (("seed", "seed", "seed"), ("7-joint arm", "7dof", "arm7")):
         p64, p32 = crit.get("ppoe_%s/ours/f64" % key), crit.get("ppoe_%s/ours/f32" % key)
-        at_least("host f64 PPOE vs the nalgebra port, %s" % robot, 3,
+        at_least("host f64 PPOE vs the nalgebra port (4×4 inv), %s" % robot, 3,
                  q(crit.get("ppoe_%s/nalgebra/f64" % key), p64))
+        at_least("host f64 PPOE vs the nalgebra port (closed-form inverse), %s" % robot, 3,
+                 q(crit.get("ppoe_%s/nalgebra_closed/f64" % key), p64))
         at_most("host PPOE f32/f64 time, %s" % robot, 1, q(p32, p64))
         at_most("host f64 PPOE / Pinocchio FK, %s" % robot, 0.8, q(p64, pin.get(pkey)))
     pin_batch = pinocchio_batch_ns(pin_text)
@@ -831,6 +837,7 @@ def render(d):
         return crit.get(k)
     s64, s32 = c("ppoe_seed/ours/f64"), c("ppoe_seed/ours/f32")
     n64, n32 = c("ppoe_seed/nalgebra/f64"), c("ppoe_seed/nalgebra/f32")
+    k64, k32 = c("ppoe_seed/nalgebra_closed/f64"), c("ppoe_seed/nalgebra_closed/f32")
     p("## PPOE of the seed robot (6-DOF, initial state), side by side")
     p("")
     p("| implementation | f64 µs/call | f32 µs/call | ours is faster by (f64) |")
@@ -838,7 +845,8 @@ def render(d):
     p("| **ppoe** (`ChainView::ppoe`, second order; joints with their constants, as ppoe-build's tables and `Joint::from_f64` give them) | **%s** | **%s** | — |" % (us(s64), us(s32)))
     p("| ppoe, joints from `Joint::new` (displacement constants derived in every call) | %s | %s | — |" % (us(c("ppoe_seed/ours_joint_new/f64")), us(c("ppoe_seed/ours_joint_new/f32"))))
     p("| ppoe, fourth order (`ppoe_fourth_order`) | %s | %s | — |" % (us(c("ppoe_seed/ours_4th_order/f64")), us(c("ppoe_seed/ours_4th_order/f32"))))
-    p("| nalgebra dense 4×4/6×6 port (benches/baseline_nalgebra.rs, checked equal) | %s | %s | %s |" % (us(n64), us(n32), ratio(n64, s64)))
+    p("| nalgebra dense 4×4/6×6 port, transforms inverted as 4×4 matrices like pytransform3d (benches/baseline_nalgebra.rs, checked equal) | %s | %s | %s |" % (us(n64), us(n32), ratio(n64, s64)))
+    p("| the same port, transforms inverted by the closed form (Rᵀ, −Rᵀp) | %s | %s | %s |" % (us(k64), us(k32), ratio(k64, s64)))
     pu = (py or {}).get("us_per_call") if py and "us_per_call" in py else None
     if pu:
         p("| pytransform3d %s example `probabilistic_forward_kinematics` (Python %s, numpy %s) | %s | — | %s |" % (
