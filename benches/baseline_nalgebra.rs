@@ -9,6 +9,8 @@
 //! may equally use (it agrees to about 1 ulp) and which costs far less.
 
 use nalgebra::{Matrix3, Matrix4, Matrix6, RealField, Vector3, Vector6};
+use ppoe::chain::Joint;
+use ppoe::{Mat6, Real, Transform};
 
 /// Screw axes (rotation first), home pose and limits, as dense nalgebra types.
 #[derive(Clone)]
@@ -17,6 +19,28 @@ pub struct NaChain<T: RealField + Copy> {
     pub home: Matrix4<T>,
     pub lower: Vec<T>,
     pub upper: Vec<T>,
+}
+
+/// The chain `joints`, `home` and the covariances `covs` as nalgebra types, for the ports.
+pub fn inputs<T: Real + RealField>(
+    joints: &[Joint<T>],
+    home: Transform<T>,
+    covs: &[Mat6<T>],
+) -> (NaChain<T>, Vec<Matrix6<T>>) {
+    let na = NaChain {
+        screws: joints
+            .iter()
+            .map(|j| Vector6::from_column_slice(&j.screw.0))
+            .collect(),
+        home: Matrix4::from_fn(|i, j| home.to_matrix4()[i][j]),
+        lower: joints.iter().map(|j| j.lower).collect(),
+        upper: joints.iter().map(|j| j.upper).collect(),
+    };
+    let na_covs = covs
+        .iter()
+        .map(|m| Matrix6::from_fn(|i, j| m.0[i][j]))
+        .collect();
+    (na, na_covs)
 }
 
 fn skew<T: RealField + Copy>(w: &Vector3<T>) -> Matrix3<T> {

@@ -6,6 +6,11 @@
 //! `ChainView::ppoe_with_lanes` (the schedule is private; without the cfg only the
 //! target's own width, lanes 0, is timed).
 //!
+//! The dense cases are also timed in f64 against the two nalgebra ports of
+//! benches/baseline_nalgebra.rs (4×4 inverses and the closed form; benches/ops.rs checks
+//! that they give ppoe's numbers), the three round by round: the `ports` lines, the medians
+//! of each round's port/ppoe ratio.
+//!
 //! `RUSTFLAGS="--cfg ppoe_bench_lanes" cargo bench --bench lanes_ratio` (optional args:
 //! rounds, calls per batch).
 //! `LANES_RATIO_CALLGRIND=<case>/<f32|f64>/<lanes> valgrind --tool=callgrind
@@ -14,6 +19,8 @@
 //! lanes 0 = the target's own choice, `ChainView::ppoe`). `LANES_RATIO_FTZ=1` sets
 //! flush-to-zero first (x86-64), which shows what subnormal values cost.
 
+#[path = "baseline_nalgebra.rs"]
+mod baseline_nalgebra;
 #[path = "pinocchio/robots.rs"]
 mod robots;
 
@@ -88,6 +95,70 @@ fn batch<T: Real>(c: &Case<T>, lanes: usize, k: usize) -> f64 {
         black_box(call(c, lanes));
     }
     t.elapsed().as_nanos() as f64 / k as f64
+}
+
+/// Nanoseconds per call of a batch of `k` calls of a nalgebra port (`closed`: the
+/// closed-form inverse).
+fn port_batch(p: &Port, closed: bool, k: usize) -> f64 {
+    let (na, th, covs) = p;
+    let t = Instant::now();
+    for _ in 0..k {
+        let th = black_box(&th[..]);
+        black_box(if closed {
+            baseline_nalgebra::ppoe_closed_form(na, th, covs)
+        } else {
+            baseline_nalgebra::ppoe(na, th, covs)
+        });
+    }
+    t.elapsed().as_nanos() as f64 / k as f64
+}
+
+/// A case as the nalgebra ports take it: chain, joint values, covariances.
+type Port = (
+    baseline_nalgebra::NaChain<f64>,
+    Vec<f64>,
+    Vec<nalgebra::Matrix6<f64>>,
+);
+
+/// The dense cases timed against the nalgebra ports.
+const PORT_CASES: [&str; 4] = ["seed_dense", "arm7", "seed_batch", "arm7_batch"];
+
+/// Interleaved rounds of ppoe (f64, the target's lanes) and the two nalgebra ports on
+/// [`PORT_CASES`]; prints per case the median ns of each and the medians of the rounds'
+/// port/ppoe ratios.
+fn port_ratios(rounds: usize, k: usize) {
+    let cases: Vec<(Case<f64>, Port)> = PORT_CASES
+        .iter()
+        .map(|n| {
+            let c: Case<f64> = case(n);
+            let (na, na_covs) = baseline_nalgebra::inputs(&c.0, c.1, &c.3);
+            let th = c.2.clone();
+            (c, (na, th, na_covs))
+        })
+        .collect();
+    // ns[case][0 = ppoe, 1 = 4×4 port, 2 = closed-form port] per round.
+    let mut ns = vec![[Vec::new(), Vec::new(), Vec::new()]; cases.len()];
+    for _ in 0..rounds {
+        for (ci, (c, p)) in cases.iter().enumerate() {
+            ns[ci][0].push(batch(c, 0, k));
+            ns[ci][1].push(port_batch(p, false, k));
+            ns[ci][2].push(port_batch(p, true, k));
+        }
+    }
+    println!("ports case | ppoe f64 ns | 4x4 port ns | closed port ns | median 4x4/ppoe | median closed/ppoe");
+    for (name, [a, b, c]) in PORT_CASES.iter().zip(&ns) {
+        let mut rb: Vec<f64> = b.iter().zip(a).map(|(x, y)| x / y).collect();
+        let mut rc: Vec<f64> = c.iter().zip(a).map(|(x, y)| x / y).collect();
+        let (mut a, mut b, mut c) = (a.clone(), b.clone(), c.clone());
+        println!(
+            "ports {name:10} | {:7.1} | {:7.1} | {:7.1} | {:.3} | {:.3}",
+            median(&mut a),
+            median(&mut b),
+            median(&mut c),
+            median(&mut rb),
+            median(&mut rc)
+        );
+    }
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -225,4 +296,5 @@ fn main() {
     let rounds = args.first().copied().unwrap_or(201);
     let k = args.get(1).copied().unwrap_or(2000);
     ratios(rounds, k);
+    port_ratios(rounds, k);
 }

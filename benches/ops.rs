@@ -84,28 +84,6 @@ fn without_constants<T: Real>(joints: &[Joint<T>]) -> Vec<Joint<T>> {
         .collect()
 }
 
-/// The same chain and covariances as nalgebra types, for the baseline.
-fn nalgebra_inputs<T: Real + nalgebra::RealField>(
-    joints: &[Joint<T>],
-    home: Transform<T>,
-    covs: &[Mat6<T>],
-) -> (baseline_nalgebra::NaChain<T>, Vec<nalgebra::Matrix6<T>>) {
-    let na = baseline_nalgebra::NaChain {
-        screws: joints
-            .iter()
-            .map(|j| nalgebra::Vector6::from_column_slice(&j.screw.0))
-            .collect(),
-        home: nalgebra::Matrix4::from_fn(|i, j| home.to_matrix4()[i][j]),
-        lower: joints.iter().map(|j| j.lower).collect(),
-        upper: joints.iter().map(|j| j.upper).collect(),
-    };
-    let na_covs = covs
-        .iter()
-        .map(|m| nalgebra::Matrix6::from_fn(|i, j| m.0[i][j]))
-        .collect();
-    (na, na_covs)
-}
-
 /// The seed example's joint covariances and initial joint values (the shared fixture).
 fn seed_inputs<T: Real>() -> ([T; 6], [Mat6<T>; 6]) {
     let (thetas, covs) = fixtures::seed_state();
@@ -230,7 +208,7 @@ fn ppoe_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
         b.iter(|| rounded.forward_kinematics(black_box(&thetas)))
     });
     // The nalgebra baseline, checked to give the same numbers first.
-    let (na, na_covs) = nalgebra_inputs(&joints, home, &covs);
+    let (na, na_covs) = baseline_nalgebra::inputs(&joints, home, &covs);
     check_nalgebra(&chain, &na, &thetas, &covs, &na_covs);
     c.bench_function(&format!("ppoe_seed/nalgebra/{t}"), |b| {
         b.iter(|| baseline_nalgebra::ppoe(&na, black_box(&thetas), &na_covs))
@@ -339,7 +317,7 @@ fn arm7_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
     };
     let thetas = robots::arm7_thetas::<T>();
     let covs = robots::arm7_covs::<T>(joints.len());
-    let (na, na_covs) = nalgebra_inputs(&joints, home, &covs);
+    let (na, na_covs) = baseline_nalgebra::inputs(&joints, home, &covs);
     check_nalgebra(&chain, &na, &thetas, &covs, &na_covs);
     c.bench_function(&format!("ppoe_7dof/ours/{t}"), |b| {
         b.iter(|| chain.ppoe(black_box(&thetas), &covs, Convention::Right))
@@ -383,7 +361,7 @@ fn batch_ops<T: Real + nalgebra::RealField>(c: &mut Criterion) {
         c.bench_function(&format!("batch_{name}/single/{t}"), |b| {
             b.iter(|| chain.ppoe(black_box(one), &covs, Convention::Right))
         });
-        let (na, na_covs) = nalgebra_inputs(&joints, home, &covs);
+        let (na, na_covs) = baseline_nalgebra::inputs(&joints, home, &covs);
         check_nalgebra(&chain, &na, one, &covs, &na_covs);
         c.bench_function(&format!("batch_{name}/nalgebra/{t}"), |b| {
             b.iter(|| baseline_nalgebra::ppoe(&na, black_box(one), &na_covs))
@@ -438,7 +416,7 @@ fn callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
     let g = golden_seed();
     let (joints, home) = seed_chain::<T>(&g);
     let (thetas, covs) = seed_inputs::<T>();
-    let (na, na_covs) = nalgebra_inputs(&joints, home, &covs);
+    let (na, na_covs) = baseline_nalgebra::inputs(&joints, home, &covs);
     let tip = ChainView {
         joints: &joints,
         home,
@@ -566,7 +544,7 @@ fn arm7_callgrind_ops<T: Real + nalgebra::RealField>() -> Vec<Op> {
     let mut v = Vec::new();
     let (aj, ah) = robots::core_chain::<T>(&robots::robot_chain(&robots::ARM7));
     let (ath, acov) = (robots::arm7_thetas::<T>(), robots::arm7_covs::<T>(aj.len()));
-    let (ana, ana_covs) = nalgebra_inputs(&aj, ah, &acov);
+    let (ana, ana_covs) = baseline_nalgebra::inputs(&aj, ah, &acov);
     let (aj1, ath1, acov1) = (aj.clone(), ath.clone(), acov.clone());
     v.push(op(format!("ppoe_7dof/ours/{t}"), move || {
         let chain = ChainView {

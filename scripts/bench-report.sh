@@ -99,7 +99,8 @@ BIN=$(ops_exe)
 
 # --- 1a. f32/f64 interleaved in one process (benches/lanes_ratio.rs) -------------------------
 # Criterion times f32 and f64 seconds apart, so load from other work can favour either; this
-# alternates short f32 and f64 batches round by round and prints the median per-round ratio.
+# alternates short f32 and f64 batches round by round and prints the median per-round ratio;
+# then, the same way, f64 ppoe against the two nalgebra ports on the dense cases (`ports`).
 echo "---- f32/f64 interleaved (cargo bench --bench lanes_ratio -- 201 2000)"
 CARGO_TARGET_DIR=$TD cargo bench -q --bench lanes_ratio -- 201 2000 >"$OUT/lanes_ratio.txt" ||
   echo "error: cargo bench --bench lanes_ratio failed" >"$OUT/lanes_ratio.txt"

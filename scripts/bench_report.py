@@ -143,6 +143,14 @@ def selftest():
     assert lanes_ratio_rows(lr) == {"seed": (376.0, 374.1, 0.996)}, lanes_ratio_rows(lr)
     assert "| seed | 376.0 | 374.1 | 0.996 |" in render_lanes_ratio(lr)
     assert "Not measured" in render_lanes_ratio("error: cargo bench --bench lanes_ratio failed")[2]
+    pr = lr + ("ports case | ppoe f64 ns | 4x4 port ns | closed port ns | median 4x4/ppoe | median closed/ppoe\n"
+               "ports seed_dense |   317.0 |  1220.4 |   878.0 | 3.870 | 2.728\n")
+    assert port_rows(pr) == {"seed_dense": (317.0, 1220.4, 878.0, 3.87, 2.728)}, port_rows(pr)
+    assert lanes_ratio_rows(pr) == lanes_ratio_rows(lr)
+    assert "| seed_dense | 317.0 | 1220.4 | 878.0 | 3.87× | 2.73× |" in render_ports(pr)
+    pt = port_target_rows(pr)
+    assert pt[0].endswith("| 3.87× | met |") and pt[1].endswith("| 2.73× | **missed** (91% of it) |"), pt
+    assert len(pt) == 8 and pt[2].endswith("| not measured | — |"), pt
     lt = lanes_target_rows(lr.replace("seed  ", "arm7  ") + "seed_dense 0 | 300.0 | 306.0 | 1.020\n")
     assert lt[0].endswith("| 1.020 | **missed** by 2.0% |") and lt[1].endswith("| 0.996 | met |"), lt
     assert len(lt) == 4 and "batch table's configuration" in lt[2] and "0.996" not in lt[2], lt
@@ -176,7 +184,7 @@ def selftest():
     assert cr == {("seed", "batch", "f64"): [(200.0, 300.0), (200.0, 200.0)]}, cr
     assert "| seed | batch | f64 | 2 | 200.0 | 250.0 | 1.25× |" in render_codegen_units(cgu), render_codegen_units(cgu)
     assert "Not measured" in render_codegen_units("error: the one-codegen-unit build failed")[2]
-    print("bench_report selftest: 13 passed, 0 failed")
+    print("bench_report selftest: 14 passed, 0 failed")
 
 
 # ---------------------------------------------------------------- firmware
@@ -589,6 +597,60 @@ def render_lanes_ratio(text):
     return L
 
 
+def port_rows(text):
+    """The `ports <case> | ppoe ns | 4x4 port ns | closed port ns | ratio | ratio` lines of
+    benches/lanes_ratio.rs, as {case: (ppoe ns, 4×4 port ns, closed port ns, median 4×4/ppoe,
+    median closed/ppoe)}."""
+    rows = {}
+    for line in (text or "").splitlines():
+        parts = [x.strip() for x in line.split("|")]
+        head = parts[0].split()
+        if len(parts) != 6 or len(head) != 2 or head[0] != "ports":
+            continue
+        try:
+            rows[head[1]] = tuple(float(x) for x in parts[1:])
+        except ValueError:
+            continue
+    return rows
+
+
+def render_ports(text):
+    """ppoe's single call against the nalgebra ports, interleaved in one process (step 1a)."""
+    L = ["### Single call against the nalgebra ports, interleaved in one process (benches/lanes_ratio.rs)", ""]
+    rows = port_rows(text)
+    if not rows:
+        return L + ["Not measured in this run (%s)." % (step_error(text) or "no result"), ""]
+    L.append("The same run as the section above: in each of its rounds, after the f32/f64 batches,")
+    L.append("2000 f64 `ChainView::ppoe` calls, then 2000 calls of each nalgebra port, for the dense")
+    L.append("cases; ns per call are medians over rounds, the ratios the medians of the rounds' own")
+    L.append("port/ppoe ratios (above 1: ppoe faster). The ports invert transforms as 4×4 matrices")
+    L.append("(as pytransform3d does) or by the closed form `(Rᵀ, −Rᵀp)`.")
+    L.append("")
+    L.append("| case | ppoe f64 ns | 4×4 inv port ns | closed-form port ns | 4×4 inv port / ppoe | closed-form port / ppoe |")
+    L.append("|---|---:|---:|---:|---:|---:|")
+    for name, (a, b, c, rb, rc) in rows.items():
+        L.append("| %s | %.1f | %.1f | %.1f | %.2f× | %.2f× |" % (name, a, b, c, rb, rc))
+    L.append("")
+    return L
+
+
+def port_target_rows(text):
+    """Issue 28's single call ≥ 3× the dense nalgebra port, from the interleaved measurement
+    (both ports), which drifting load disturbs less than criterion medians timed apart."""
+    rows = port_rows(text)
+    L = []
+    for robot, case in (("seed", "seed_dense"), ("7-joint arm", "arm7"),
+                        ("seed, batch table's configuration", "seed_batch"),
+                        ("7-joint arm, batch table's configuration", "arm7_batch")):
+        for port, i in (("4×4 inv", 3), ("closed-form inverse", 4)):
+            v = rows[case][i] if case in rows else None
+            name = "host f64 single PPOE vs the nalgebra port (%s), dense, %s, interleaved in one process" % (port, robot)
+            L.append("| %s | ≥ 3× | %s | %s |" % (
+                name, "not measured" if v is None else "%.2f×" % v,
+                "—" if v is None else "met" if v >= 3 else "**missed** (%.0f%% of it)" % (100 * v / 3)))
+    return L
+
+
 def render_batch_v3(crit, d):
     """The batch benchmarks of a -C target-cpu=x86-64-v3 build (step 1b) beside the default
     target's, ns per configuration."""
@@ -863,6 +925,7 @@ def render(d):
     L.extend(render_batch(crit, pin_text))
     L.extend(render_alternating(read_text(os.path.join(d, "batch_alternating.txt"))))
     L.extend(render_lanes_ratio(read_text(os.path.join(d, "lanes_ratio.txt"))))
+    L.extend(render_ports(read_text(os.path.join(d, "lanes_ratio.txt"))))
     L.extend(render_batch_v3(crit, d))
     L.extend(render_codegen_units(read_text(os.path.join(d, "codegen_units.txt"))))
     L.extend(render_python_batch(load(os.path.join(d, "python_batch.json")), m))
@@ -1021,6 +1084,7 @@ def render(d):
              pu64 * 1e3 / s64 if pu64 and s64 else None)
     L.extend(target_rows(crit, pin_text))
     L.extend(lanes_target_rows(read_text(os.path.join(d, "lanes_ratio.txt"))))
+    L.extend(port_target_rows(read_text(os.path.join(d, "lanes_ratio.txt"))))
     L.extend(alternating_target_rows(read_text(os.path.join(d, "batch_alternating.txt"))))
     if a1 and a32:
         p("| constant cost per joint (issue 6) | time(N)/N flat | %.1f ns (N=1) … %.1f ns (N=32) | see the chain table |" % (a1, a32 / 32))
