@@ -558,80 +558,78 @@ def render_codegen_units(text):
     return L
 
 
-def lanes_ratio_rows(text):
-    """The `case lanes | f64 ns | f32 ns | ratio` lines of benches/lanes_ratio.rs, as
-    {case: (f64 ns, f32 ns, median per-round f32/f64)} (target lanes, 0, only)."""
+def pipe_rows(text, fields, name):
+    """{name: floats} of the `<head> | x | y | …` lines of benches/lanes_ratio.rs with
+    `fields` numbers after the head, whose head words `name` maps to a row name (None:
+    not such a line)."""
     rows = {}
     for line in (text or "").splitlines():
         parts = [x.strip() for x in line.split("|")]
-        head = parts[0].split()
-        if len(parts) != 4 or len(head) != 2 or head[1] != "0":
+        key = name(parts[0].split()) if len(parts) == fields + 1 else None
+        if key is None:
             continue
         try:
-            rows[head[0]] = tuple(float(x) for x in parts[1:])
+            rows[key] = tuple(float(x) for x in parts[1:])
         except ValueError:
             continue
     return rows
 
 
-def render_lanes_ratio(text):
-    """The f32/f64 ratios of f32 and f64 batches interleaved in one process (step 1a)."""
-    L = ["### f32 against f64, interleaved in one process (benches/lanes_ratio.rs)", ""]
-    rows = lanes_ratio_rows(text)
+def lanes_ratio_rows(text):
+    """The `case lanes | f64 ns | f32 ns | ratio` lines of benches/lanes_ratio.rs, as
+    {case: (f64 ns, f32 ns, median per-round f32/f64)} (target lanes, 0, only)."""
+    return pipe_rows(text, 3, lambda h: h[0] if len(h) == 2 and h[1] == "0" else None)
+
+
+def rows_section(title, rows, text, prose, header, row):
+    """A report section of the rows parsed from `text`: `title`, the `prose` lines, a table
+    of `header` (a line and its alignment line) with `row(name, values)` per row; "not
+    measured" with the step's error when `text` gave no rows."""
+    L = [title, ""]
     if not rows:
         return L + ["Not measured in this run (%s)." % (step_error(text) or "no result"), ""]
-    L.append("`cargo bench --bench lanes_ratio -- 201 2000`: 201 rounds, each timing 2000 single")
-    L.append("`ChainView::ppoe` calls in f64 then in f32 for every case, so that load from other work")
-    L.append("falls on both alike; ns per call are medians over rounds, the ratio is the median of the")
-    L.append("rounds' own f32/f64 ratios (below 1: f32 faster). `seed_dense` and `arm7` have the batch")
-    L.append("table's dense covariances with the seed example's joint values and the arm's benchmark")
-    L.append("configuration; `seed_batch` and `arm7_batch` the same covariances with the configuration")
-    L.append("of the batch table's single-call column; `seed` the seed example's covariances; `chainN`")
-    L.append("a synthetic N-joint chain.")
-    L.append("")
-    L.append("| case | f64 ns | f32 ns | f32 / f64 (median of rounds) |")
-    L.append("|---|---:|---:|---:|")
-    for name, (a, b, r) in rows.items():
-        L.append("| %s | %.1f | %.1f | %.3f |" % (name, a, b, r))
-    L.append("")
-    return L
+    L.extend(prose + [""] + header)
+    L.extend(row(name, v) for name, v in rows.items())
+    return L + [""]
+
+
+def render_lanes_ratio(text):
+    """The f32/f64 ratios of f32 and f64 batches interleaved in one process (step 1a)."""
+    return rows_section(
+        "### f32 against f64, interleaved in one process (benches/lanes_ratio.rs)",
+        lanes_ratio_rows(text), text, [
+            "`cargo bench --bench lanes_ratio -- 201 2000`: 201 rounds, each timing 2000 single",
+            "`ChainView::ppoe` calls in f64 then in f32 for every case, so that load from other work",
+            "falls on both alike; ns per call are medians over rounds, the ratio is the median of the",
+            "rounds' own f32/f64 ratios (below 1: f32 faster). `seed_dense` and `arm7` have the batch",
+            "table's dense covariances with the seed example's joint values and the arm's benchmark",
+            "configuration; `seed_batch` and `arm7_batch` the same covariances with the configuration",
+            "of the batch table's single-call column; `seed` the seed example's covariances; `chainN`",
+            "a synthetic N-joint chain."],
+        ["| case | f64 ns | f32 ns | f32 / f64 (median of rounds) |", "|---|---:|---:|---:|"],
+        lambda name, v: "| %s | %.1f | %.1f | %.3f |" % ((name,) + v))
 
 
 def port_rows(text):
     """The `ports <case> | ppoe ns | 4x4 port ns | closed port ns | ratio | ratio` lines of
     benches/lanes_ratio.rs, as {case: (ppoe ns, 4×4 port ns, closed port ns, median 4×4/ppoe,
     median closed/ppoe)}."""
-    rows = {}
-    for line in (text or "").splitlines():
-        parts = [x.strip() for x in line.split("|")]
-        head = parts[0].split()
-        if len(parts) != 6 or len(head) != 2 or head[0] != "ports":
-            continue
-        try:
-            rows[head[1]] = tuple(float(x) for x in parts[1:])
-        except ValueError:
-            continue
-    return rows
+    return pipe_rows(text, 5, lambda h: h[1] if len(h) == 2 and h[0] == "ports" else None)
 
 
 def render_ports(text):
     """ppoe's single call against the nalgebra ports, interleaved in one process (step 1a)."""
-    L = ["### Single call against the nalgebra ports, interleaved in one process (benches/lanes_ratio.rs)", ""]
-    rows = port_rows(text)
-    if not rows:
-        return L + ["Not measured in this run (%s)." % (step_error(text) or "no result"), ""]
-    L.append("The same run as the section above: in each of its rounds, after the f32/f64 batches,")
-    L.append("2000 f64 `ChainView::ppoe` calls, then 2000 calls of each nalgebra port, for the dense")
-    L.append("cases; ns per call are medians over rounds, the ratios the medians of the rounds' own")
-    L.append("port/ppoe ratios (above 1: ppoe faster). The ports invert transforms as 4×4 matrices")
-    L.append("(as pytransform3d does) or by the closed form `(Rᵀ, −Rᵀp)`.")
-    L.append("")
-    L.append("| case | ppoe f64 ns | 4×4 inv port ns | closed-form port ns | 4×4 inv port / ppoe | closed-form port / ppoe |")
-    L.append("|---|---:|---:|---:|---:|---:|")
-    for name, (a, b, c, rb, rc) in rows.items():
-        L.append("| %s | %.1f | %.1f | %.1f | %.2f× | %.2f× |" % (name, a, b, c, rb, rc))
-    L.append("")
-    return L
+    return rows_section(
+        "### Single call against the nalgebra ports, interleaved in one process (benches/lanes_ratio.rs)",
+        port_rows(text), text, [
+            "The same run as the section above: in each of its rounds, after the f32/f64 batches,",
+            "2000 f64 `ChainView::ppoe` calls, then 2000 calls of each nalgebra port, for the dense",
+            "cases; ns per call are medians over rounds, the ratios the medians of the rounds' own",
+            "port/ppoe ratios (above 1: ppoe faster). The ports invert transforms as 4×4 matrices",
+            "(as pytransform3d does) or by the closed form `(Rᵀ, −Rᵀp)`."],
+        ["| case | ppoe f64 ns | 4×4 inv port ns | closed-form port ns | 4×4 inv port / ppoe | closed-form port / ppoe |",
+         "|---|---:|---:|---:|---:|---:|"],
+        lambda name, v: "| %s | %.1f | %.1f | %.1f | %.2f× | %.2f× |" % ((name,) + v))
 
 
 def port_target_rows(text):
