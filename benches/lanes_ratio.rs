@@ -98,9 +98,9 @@ fn batch<T: Real>(c: &Case<T>, lanes: usize, k: usize) -> f64 {
 }
 
 /// Nanoseconds per call of a batch of `k` calls of a nalgebra port (`closed`: the
-/// closed-form inverse).
-fn port_batch(p: &Port, closed: bool, k: usize) -> f64 {
-    let (na, th, covs) = p;
+/// closed-form inverse) on `c`'s joint values.
+fn port_batch(c: &Case<f64>, p: &Port, closed: bool, k: usize) -> f64 {
+    let ((na, covs), th) = (p, &c.2);
     let t = Instant::now();
     for _ in 0..k {
         let th = black_box(&th[..]);
@@ -113,12 +113,8 @@ fn port_batch(p: &Port, closed: bool, k: usize) -> f64 {
     t.elapsed().as_nanos() as f64 / k as f64
 }
 
-/// A case as the nalgebra ports take it: chain, joint values, covariances.
-type Port = (
-    baseline_nalgebra::NaChain<f64>,
-    Vec<f64>,
-    Vec<nalgebra::Matrix6<f64>>,
-);
+/// A case's chain and covariances as the nalgebra ports take them.
+type Port = (baseline_nalgebra::NaChain<f64>, Vec<nalgebra::Matrix6<f64>>);
 
 /// The dense cases timed against the nalgebra ports.
 const PORT_CASES: [&str; 4] = ["seed_dense", "arm7", "seed_batch", "arm7_batch"];
@@ -131,9 +127,8 @@ fn port_ratios(rounds: usize, k: usize) {
         .iter()
         .map(|n| {
             let c: Case<f64> = case(n);
-            let (na, na_covs) = baseline_nalgebra::inputs(&c.0, c.1, &c.3);
-            let th = c.2.clone();
-            (c, (na, th, na_covs))
+            let port = baseline_nalgebra::inputs(&c.0, c.1, &c.3);
+            (c, port)
         })
         .collect();
     // ns[case][0 = ppoe, 1 = 4×4 port, 2 = closed-form port] per round.
@@ -141,8 +136,8 @@ fn port_ratios(rounds: usize, k: usize) {
     for _ in 0..rounds {
         for (ci, (c, p)) in cases.iter().enumerate() {
             ns[ci][0].push(batch(c, 0, k));
-            ns[ci][1].push(port_batch(p, false, k));
-            ns[ci][2].push(port_batch(p, true, k));
+            ns[ci][1].push(port_batch(c, p, false, k));
+            ns[ci][2].push(port_batch(c, p, true, k));
         }
     }
     println!("ports case | ppoe f64 ns | 4x4 port ns | closed port ns | median 4x4/ppoe | median closed/ppoe");

@@ -504,6 +504,13 @@ def at_most_one_row(name, r, digits):
         name, digits, r, "met" if r <= 1 else "**missed** by %.*f%%" % (digits - 2, 100 * (r - 1)))
 
 
+def at_least_row(name, limit, val):
+    """A targets-table row for a ratio that must be ≥ `limit` (`None`: not measured)."""
+    return "| %s | ≥ %g× | %s | %s |" % (
+        name, limit, "not measured" if val is None else "%.2f×" % val,
+        "—" if val is None else "met" if val >= limit else "**missed** (%.0f%% of it)" % (100 * val / limit))
+
+
 def codegen_unit_rounds(text):
     """{(robot, call, scalar): [(default ns, one-unit ns)] per round} from step 1c: each
     round's `build default` then `build one_unit` criterion lines of `batch_<key>/<call>/<T>`,
@@ -637,15 +644,11 @@ def port_target_rows(text):
     (both ports), which drifting load disturbs less than criterion medians timed apart."""
     rows = port_rows(text)
     L = []
-    for robot, case in (("seed", "seed_dense"), ("7-joint arm", "arm7"),
-                        ("seed, batch table's configuration", "seed_batch"),
-                        ("7-joint arm, batch table's configuration", "arm7_batch")):
+    for robot, case in DENSE_CASES:
         for port, i in (("4×4 inv", 3), ("closed-form inverse", 4)):
             v = rows[case][i] if case in rows else None
-            name = "host f64 single PPOE vs the nalgebra port (%s), dense, %s, interleaved in one process" % (port, robot)
-            L.append("| %s | ≥ 3× | %s | %s |" % (
-                name, "not measured" if v is None else "%.2f×" % v,
-                "—" if v is None else "met" if v >= 3 else "**missed** (%.0f%% of it)" % (100 * v / 3)))
+            L.append(at_least_row("host f64 single PPOE vs the nalgebra port (%s), dense, %s,"
+                                  " interleaved in one process" % (port, robot), 3, v))
     return L
 
 
@@ -782,9 +785,7 @@ def target_rows(crit, pin_text):
     L = []
 
     def at_least(name, limit, val):
-        L.append("| %s | ≥ %g× | %s | %s |" % (
-            name, limit, "not measured" if val is None else "%.2f×" % val,
-            "—" if val is None else "met" if val >= limit else "**missed** (%.0f%% of it)" % (100 * val / limit)))
+        L.append(at_least_row(name, limit, val))
 
     def at_most(name, limit, val):
         L.append("| %s | ≤ %g | %s | %s |" % (
@@ -820,6 +821,12 @@ def target_rows(crit, pin_text):
     return L
 
 
+# The dense cases of benches/lanes_ratio.rs and the robot each names in the target rows.
+DENSE_CASES = (("seed", "seed_dense"), ("7-joint arm", "arm7"),
+               ("seed, batch table's configuration", "seed_batch"),
+               ("7-joint arm, batch table's configuration", "arm7_batch"))
+
+
 def lanes_target_rows(text):
     """Issue 28's f32-not-slower target for the single call, from the interleaved
     measurement (benches/lanes_ratio.rs: the two scalars timed round by round in one
@@ -827,9 +834,7 @@ def lanes_target_rows(text):
     medians the rows above compare (timed minutes apart)."""
     rows = lanes_ratio_rows(text)
     L = []
-    for robot, case in (("seed", "seed_dense"), ("7-joint arm", "arm7"),
-                        ("seed, batch table's configuration", "seed_batch"),
-                        ("7-joint arm, batch table's configuration", "arm7_batch")):
+    for robot, case in DENSE_CASES:
         name = "host f32/f64 time, dense, single call, %s, interleaved in one process" % robot
         L.append(at_most_one_row(name, rows[case][2] if case in rows else None, 3))
     return L

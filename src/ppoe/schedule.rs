@@ -26,8 +26,9 @@
 //! and regroups them with shuffles, and the PPOE executed more instructions. Nor with the
 //! rows of the 3×3 blocks in four-lane packs (three entries and a zero, one SSE register
 //! each): every product needs an entry broadcast to all lanes (a shuffle) and, in SSE's
-//! two-operand form, a copy, and the seed's dense f32 PPOE executed 5710 instructions
-//! instead of 4859.
+//! two-operand form, a copy; a prototype (not kept, so no command here reproduces it)
+//! executed 5710 instructions for the seed's dense f32 PPOE instead of 4859 under
+//! `lanes_ratio`'s callgrind mode.
 //!
 //! Why groups are built as locals: the joints go in groups of W, and each group's W
 //! congruences and covariances are built as local values, then gathered into lanes
