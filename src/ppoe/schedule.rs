@@ -30,20 +30,34 @@
 //! executed 5710 instructions for the seed's dense f32 PPOE instead of 4859 under
 //! `lanes_ratio`'s callgrind mode.
 //!
-//! Why groups are built as locals: the joints go in groups of W, and each group's W
-//! congruences and covariances are built as local values, then gathered into lanes
-//! whole. Queuing them in a buffer until W were pending made the lane gathers load
-//! what had just been stored field by field (store-forwarding stalls); filling a zeroed
-//! buffer lane by lane compiled to a `memset` call and scalar stores that the vector
-//! loads then waited on.
+//! Why congruences are written into packs, one group ahead: the joints go in groups of
+//! W, and each joint's congruence is written into lane k of the group's packs
+//! ([`PackedCongruence`]) as soon as it is made, so the transport reads every pack whole
+//! from where it was written, as a memory operand. Built as W local values and gathered
+//! into lanes instead, the transport loaded each entry of each congruence separately,
+//! shuffled the lanes together and spilled the packs to the stack for later use (on the
+//! seed's dense f64 PPOE this and the padded tail below cut its instructions from 4418
+//! to 4268 under `lanes_ratio`'s callgrind mode, and more so its loads and stores to the
+//! stack; on x86-64 the time followed the loads and stores more than the instruction
+//! count). Written lane by
+//! lane, a pack is loaded whole right after its lanes were stored one at a time, which
+//! stalls (the store buffer cannot forward one load from two stores); so group k + 1 is
+//! made before group k is transported ([`Sums::run`]), and the stores have long left the
+//! store buffer when the transport loads them. The forward kinematics of the next group,
+//! a chain of dependent products, also runs beside the transports, which do not depend
+//! on it. One lane is the exception: there the congruence goes from the walk straight
+//! to its transport (nothing to pack).
 //!
-//! Why a one-lane tail: when the joint count is not a multiple of W, the last group's
-//! joints are transported one lane at a time (the code path of the one-lane targets)
-//! rather than in W lanes with zero covariances padding the empty ones: with two lanes
-//! a padded lane costs a whole transport, and its result is zero. With four lanes one
-//! packed transport costs fewer instructions than three scalar ones (a 7-joint f32 chain
-//! 5228 instead of 5579 per PPOE under callgrind) but more than two, so a last group
-//! more than half full runs in all W lanes, its empty lanes zero (exactly zero results).
+//! Why the last group is padded: when the joint count is not a multiple of W, the empty
+//! lanes of the last group get zero congruences and covariances (exactly zero results).
+//! With two lanes a padded lane costs a whole transport, but so did the alternative, its
+//! joint transported alone one lane at a time (a scalar transport executes as many
+//! instructions as a two-lane one, and on x86-64 `lanes_ratio`'s f64 7-joint chain ran
+//! slower than its 8-joint one). With four lanes one packed transport costs fewer
+//! instructions than three scalar ones (a 7-joint f32 chain 5228 instead of 5579 per
+//! PPOE under callgrind, measured with the gathered form) but more than two, so a last
+//! group at most half full runs one lane at a time (the code path of the one-lane
+//! targets).
 //!
 //! Why joints with a zero covariance are skipped: fixed or noiseless joints are common,
 //! and their transport adds exactly zero; the check (a scan that stops at the first
@@ -76,7 +90,7 @@ use super::{Convention, UncertainPose};
 use crate::kinematics::ChainView;
 use crate::linalg::Mat6;
 use crate::scalar::Real;
-use crate::se3::congruence::{mirror_lower, Congruence, Pack};
+use crate::se3::congruence::{mirror_lower, Congruence, Pack, PackedCongruence};
 use crate::se3::Transform;
 
 /// Whether the target has 128-bit SIMD registers for floats.
@@ -142,10 +156,10 @@ pub(super) fn with_lanes<T: Real>(
 }
 
 /// The PPOE of `chain` after the length check, W transports at a time: the joints go in
-/// groups of W, each group's W congruences and covariances are built as locals and
-/// transported in the W lanes together; a last group of fewer than W joints is
-/// transported one lane at a time unless it fills more than half of W > 2 lanes (see
-/// [`Sums::add`]).
+/// groups of W, each group's W congruences written into the lanes of packs and
+/// transported in the W lanes together; a last group of fewer than W joints is padded
+/// with zeros, except one at most half full of W > 2 lanes, which is transported one
+/// lane at a time (see [`Sums::add`]).
 #[inline(always)]
 fn ppoe_lanes<T: Real, const W: usize>(
     chain: &ChainView<'_, T>,
@@ -157,16 +171,33 @@ fn ppoe_lanes<T: Real, const W: usize>(
         lanes: [[Pack([T::ZERO; W]); 6]; 6],
         tail: [[T::ZERO; 6]; 6],
     };
+    let zero = Mat6::zeros();
     let pose = if convention == Convention::Left {
-        base_frame(chain, thetas, covs, &mut sums) * chain.home
+        let mut walk = BaseWalk {
+            chain,
+            thetas,
+            covs,
+            p: Transform::identity(),
+            i: 0,
+        };
+        sums.run(&mut walk, &zero);
+        walk.p * chain.home
     } else {
         let start = if convention == Convention::Right {
             chain.home
         } else {
             Transform::identity()
         };
-        let clip_continuous = convention == Convention::Pytransform3d;
-        let g = tip_frame(chain, thetas, covs, clip_continuous, start, &mut sums);
+        let mut walk = TipWalk {
+            chain,
+            thetas,
+            covs,
+            clip_continuous: convention == Convention::Pytransform3d,
+            g: start,
+            left: chain.joints.len(),
+        };
+        sums.run(&mut walk, &zero);
+        let g = walk.g;
         if convention == Convention::Right {
             g
         } else {
@@ -183,8 +214,8 @@ fn ppoe_lanes<T: Real, const W: usize>(
 }
 
 /// The lower triangles of the transported covariances, summed: W partial sums in lanes,
-/// and one for the joints of the last, incomplete group (with one lane on a SIMD target,
-/// for every joint).
+/// and one for the joints transported one lane at a time (with four lanes, those of a
+/// last group at most half full; with one lane on a SIMD target, every joint).
 struct Sums<T, const W: usize> {
     lanes: [[Pack<T, W>; 6]; 6],
     tail: [[T; 6]; 6],
@@ -199,23 +230,81 @@ impl<T: Real, const W: usize> Sums<T, W> {
     /// firmware's budgets).
     const IN_PLACE: bool = W == 1 && SIMD128;
 
-    /// Adds the transports of `group`'s first `filled` entries: in place to the tail if
-    /// [`Self::IN_PLACE`]; else in lanes together when all W are filled or, with more than
-    /// two lanes, more than half of them (the empty slots hold zero congruences and
-    /// covariances); else one lane at a time.
+    /// Whether the tail is ever added to: with one lane in place, and with more than
+    /// two lanes (a last group at most half full). Else it stays zero, and is not read.
+    const TAIL: bool = Self::IN_PLACE || W > 2;
+
+    /// Runs `walk` to its end. One lane: each joint's transport as it comes
+    /// ([`Self::run_one_lane`]). More: one group at a time, each group's transports after
+    /// the next group has been made (the module doc says why).
     #[inline(always)]
-    fn add(&mut self, group: &[(Congruence<T>, &Mat6<T>); W], filled: usize) {
-        if Self::IN_PLACE {
-            if let (1, Some((c, cov))) = (filled, group.first()) {
-                c.add_lower(cov, &mut self.tail);
+    fn run<'c, K: Walk<'c, T>>(&mut self, walk: &mut K, zero: &'c Mat6<T>) {
+        if W == 1 {
+            return self.run_one_lane(walk, zero);
+        }
+        let mut a = Group::new(zero);
+        let mut b = Group::new(zero);
+        a.fill(walk);
+        while a.filled > 0 {
+            b.fill(walk);
+            self.add(&mut a, zero);
+            if b.filled == 0 {
+                break;
             }
-        } else if filled == W || (W > 2 && 2 * filled > W) {
-            Congruence::add_lower_packed(group, &mut self.lanes);
-        } else if W > 1 {
-            for (c, cov) in group.iter().take(filled) {
-                c.add_lower(cov, &mut self.tail);
+            a.fill(walk);
+            self.add(&mut b, zero);
+        }
+    }
+
+    /// [`Self::run`] with one lane: each joint through a one-slot group, transported in
+    /// place ([`Self::IN_PLACE`]) or gathered into one-lane packs. The slot is the form the
+    /// firmware's budgets were set with; handing each joint from the walk straight to
+    /// its transport compiled to more stack on the Cortex-M targets with an FPU (the
+    /// M4F's f32 PPOE 428 bytes instead of 352).
+    #[inline(always)]
+    fn run_one_lane<'c, K: Walk<'c, T>>(&mut self, walk: &mut K, zero: &'c Mat6<T>) {
+        loop {
+            let mut group = [(Congruence::ZERO, zero); W];
+            let mut filled = 0;
+            for slot in group.iter_mut() {
+                if let Some(next) = walk.next() {
+                    *slot = next;
+                    filled += 1;
+                }
+            }
+            if filled == 0 {
+                return;
+            }
+            if Self::IN_PLACE {
+                if let Some((c, cov)) = group.first() {
+                    c.add_lower(cov, &mut self.tail);
+                }
+            } else {
+                Congruence::add_lower_packed(&group, &mut self.lanes);
             }
         }
+    }
+
+    /// Adds the transports of `group`'s joints (W > 1): in the W lanes together, the
+    /// empty lanes of an incomplete group set to zero congruences and covariances, or,
+    /// with more than two lanes and at most half of them filled, one lane at a time.
+    #[inline(always)]
+    fn add<'c>(&mut self, group: &mut Group<'c, T, W>, zero: &'c Mat6<T>) {
+        let filled = group.filled;
+        if filled == W || (filled > 0 && (W == 2 || 2 * filled > W)) {
+            for k in filled..W {
+                group.congruences.set_lane(k, &Congruence::ZERO);
+                if let Some(slot) = group.covs.get_mut(k) {
+                    *slot = zero;
+                }
+            }
+            group.congruences.add_lower(&group.covs, &mut self.lanes);
+        } else {
+            for (k, cov) in group.covs.iter().enumerate().take(filled) {
+                group.congruences.lane(k).add_lower(cov, &mut self.tail);
+            }
+        }
+        group.filled = 0;
     }
 
     /// The sum over the lanes and the tail, mirrored: exactly symmetric.
@@ -224,13 +313,12 @@ impl<T: Real, const W: usize> Sums<T, W> {
         if Self::IN_PLACE {
             return mirror_lower(self.tail);
         }
-        // One lane elsewhere: no tail (every group is full); starting from zeros lets the
-        // optimiser drop it.
         let mut acc = [[T::ZERO; 6]; 6];
         for ((arow, lrow), trow) in acc.iter_mut().zip(&self.lanes).zip(&self.tail) {
             for ((a, l), t) in arow.iter_mut().zip(lrow).zip(trow) {
-                // All 36, only the lower triangle is kept.
-                let start = if W > 1 { *t } else { T::ZERO };
+                // All 36, only the lower triangle is kept. Starting from zero where the
+                // tail is unused lets the optimiser drop it.
+                let start = if Self::TAIL { *t } else { T::ZERO };
                 *a = l.0.iter().fold(start, |s, x| s + *x);
             }
         }
@@ -238,83 +326,115 @@ impl<T: Real, const W: usize> Sums<T, W> {
     }
 }
 
+/// Up to W joints' congruences in the lanes of packs, and their covariances: the first
+/// `filled` lanes hold joints, the others what an earlier group left (set to zero before
+/// they are transported, [`Sums::add`]).
+struct Group<'c, T, const W: usize> {
+    congruences: PackedCongruence<T, W>,
+    covs: [&'c Mat6<T>; W],
+    filled: usize,
+}
+
+impl<'c, T: Real, const W: usize> Group<'c, T, W> {
+    /// An empty group.
+    #[inline(always)]
+    fn new(zero: &'c Mat6<T>) -> Self {
+        Self {
+            congruences: PackedCongruence::ZERO,
+            covs: [zero; W],
+            filled: 0,
+        }
+    }
+
+    /// Fills the lanes with `walk`'s next joints (fewer at the chain's end).
+    #[inline(always)]
+    fn fill<K: Walk<'c, T>>(&mut self, walk: &mut K) {
+        for _ in 0..W {
+            let Some((c, cov)) = walk.next() else {
+                break;
+            };
+            self.congruences.set_lane(self.filled, &c);
+            if let Some(slot) = self.covs.get_mut(self.filled) {
+                *slot = cov;
+            }
+            self.filled += 1;
+        }
+    }
+}
+
+/// A walk along the chain, one joint with a covariance at a time.
+trait Walk<'c, T: Real> {
+    /// The next joint that has a covariance: its congruence and covariance (`None` at the
+    /// chain's end).
+    fn next(&mut self) -> Option<(Congruence<T>, &'c Mat6<T>)>;
+}
+
 /// Base frame: Σ_left = Σᵢ Ad(Pᵢ)·covᵢ·Ad(Pᵢ)ᵀ, Pᵢ = D₁…Dᵢ (the reference's sum moved by
-/// Ad(Pₙ)); one transport per joint and none at the end. Returns Pₙ.
-#[inline(always)]
-fn base_frame<T: Real, const W: usize>(
-    chain: &ChainView<'_, T>,
-    thetas: &[T],
-    covs: &[Mat6<T>],
-    sums: &mut Sums<T, W>,
-) -> Transform<T> {
-    let n = chain.joints.len();
-    let zero = Mat6::zeros();
-    let mut p = Transform::identity();
-    let mut i = 0;
-    while i < n {
-        let mut group = [(Congruence::ZERO, &zero); W];
-        let mut filled = 0;
-        for slot in group.iter_mut() {
-            // The next joint with a covariance, moving P along the joints skipped.
-            while let (Some(j), Some(t), Some(cov)) =
-                (chain.joints.get(i), thetas.get(i), covs.get(i))
-            {
-                i += 1;
-                p = p.compose(&j.displacement(j.clip(*t, false)));
-                if !is_zero(cov) {
-                    *slot = (Congruence::of(&p), cov);
-                    filled += 1;
-                    break;
-                }
+/// Ad(Pₙ)); one transport per joint and none at the end. `p` ends as Pₙ.
+struct BaseWalk<'a, 'c, T> {
+    chain: &'a ChainView<'a, T>,
+    thetas: &'a [T],
+    covs: &'c [Mat6<T>],
+    p: Transform<T>,
+    i: usize,
+}
+
+impl<'c, T: Real> Walk<'c, T> for BaseWalk<'_, 'c, T> {
+    #[inline(always)]
+    fn next(&mut self) -> Option<(Congruence<T>, &'c Mat6<T>)> {
+        // Moving P along the joints skipped.
+        while let (Some(j), Some(t), Some(cov)) = (
+            self.chain.joints.get(self.i),
+            self.thetas.get(self.i),
+            self.covs.get(self.i),
+        ) {
+            self.i += 1;
+            self.p = self.p.compose(&j.displacement(j.clip(*t, false)));
+            if !is_zero(cov) {
+                return Some((Congruence::of(&self.p), cov));
             }
         }
-        sums.add(&group, filled);
+        None
     }
-    p
 }
 
 /// Tip frame, from the tip backwards: Σ_right = Σᵢ Ad(Gᵢ⁻¹)·covᵢ·Ad(Gᵢ⁻¹)ᵀ with
 /// Gᵢ = Dᵢ₊₁…Dₙ·`start` (the reference's recursion unrolled, then moved by Ad(M⁻¹) for
 /// `start` = M). One transport per joint and none at the end, and each uses the lever arm
 /// from joint i to the tip, not through the base and back. The reference's variant starts
-/// from I and moves the sum by Ad(M) instead. Returns G₀.
-#[inline(always)]
-fn tip_frame<T: Real, const W: usize>(
-    chain: &ChainView<'_, T>,
-    thetas: &[T],
-    covs: &[Mat6<T>],
+/// from I and moves the sum by Ad(M) instead. `g` ends as G₀.
+struct TipWalk<'a, 'c, T> {
+    chain: &'a ChainView<'a, T>,
+    thetas: &'a [T],
+    covs: &'c [Mat6<T>],
     clip_continuous: bool,
-    start: Transform<T>,
-    sums: &mut Sums<T, W>,
-) -> Transform<T> {
-    let zero = Mat6::zeros();
-    let mut g = start;
-    let mut left = chain.joints.len();
-    while left > 0 {
-        let mut group = [(Congruence::ZERO, &zero); W];
-        let mut filled = 0;
-        for slot in group.iter_mut() {
-            // The next joint towards the base with a covariance, moving G along the
-            // joints skipped.
-            while let Some(i) = left.checked_sub(1) {
-                left = i;
-                let (Some(j), Some(t), Some(cov)) =
-                    (chain.joints.get(i), thetas.get(i), covs.get(i))
-                else {
-                    break;
-                };
-                let c = Congruence::of_inverse(&g);
-                g = j.displacement(j.clip(*t, clip_continuous)).compose(&g);
-                if !is_zero(cov) {
-                    *slot = (c, cov);
-                    filled += 1;
-                    break;
-                }
+    g: Transform<T>,
+    left: usize,
+}
+
+impl<'c, T: Real> Walk<'c, T> for TipWalk<'_, 'c, T> {
+    #[inline(always)]
+    fn next(&mut self) -> Option<(Congruence<T>, &'c Mat6<T>)> {
+        // Towards the base, moving G along the joints skipped.
+        while let Some(i) = self.left.checked_sub(1) {
+            self.left = i;
+            let (Some(j), Some(t), Some(cov)) = (
+                self.chain.joints.get(i),
+                self.thetas.get(i),
+                self.covs.get(i),
+            ) else {
+                break;
+            };
+            let c = Congruence::of_inverse(&self.g);
+            self.g = j
+                .displacement(j.clip(*t, self.clip_continuous))
+                .compose(&self.g);
+            if !is_zero(cov) {
+                return Some((c, cov));
             }
         }
-        sums.add(&group, filled);
+        None
     }
-    g
 }
 
 /// Whether every entry of `cov` is zero (a joint without noise): its transport adds

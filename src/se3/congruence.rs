@@ -154,9 +154,10 @@ impl<T: Real> Congruence<T> {
     }
 
     /// W congruences side by side: adds the lower triangle of congruence k applied to
-    /// covariance k to lane k of `acc`. The same operations on [`Pack`] lanes, which the
-    /// optimiser maps to SIMD where the target has it. Every pack is built whole from its
-    /// W lanes (the PPOE schedule's module doc says why).
+    /// covariance k to lane k of `acc`. The same operations on [`Pack`] lanes, every pack
+    /// gathered whole from its W lanes. The PPOE's one-lane schedule on the scalar-FPU
+    /// targets uses it (W = 1); with more lanes the schedule writes its congruences into
+    /// a [`PackedCongruence`] instead (its module doc says why).
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // a gather: lane k of every element, by index
     pub(crate) fn add_lower_packed<const W: usize>(
@@ -178,6 +179,64 @@ impl<T: Real> Congruence<T> {
             }
         }
         transport_lower(&r, &q, &c, acc);
+    }
+}
+
+/// W congruences in the lanes of packs (lane k holds congruence k), written lane by
+/// lane as they are made and transported together by [`PackedCongruence::add_lower`]:
+/// the transport reads each pack whole from where it was written, with no gather.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PackedCongruence<T, const W: usize> {
+    r: [[Pack<T, W>; 3]; 3],
+    q: [Pack<T, W>; 3],
+}
+
+impl<T: Real, const W: usize> PackedCongruence<T, W> {
+    /// Zero congruences in every lane.
+    pub(crate) const ZERO: Self = Self {
+        r: [[Pack([T::ZERO; W]); 3]; 3],
+        q: [Pack([T::ZERO; W]); 3],
+    };
+
+    /// Writes `c` into lane `k` (nothing if `k` ≥ W).
+    #[inline(always)]
+    pub(crate) fn set_lane(&mut self, k: usize, c: &Congruence<T>) {
+        for (prow, crow) in self.r.iter_mut().zip(&c.r) {
+            for (p, x) in prow.iter_mut().zip(crow) {
+                if let Some(l) = p.0.get_mut(k) {
+                    *l = *x;
+                }
+            }
+        }
+        for (p, x) in self.q.iter_mut().zip(&c.q) {
+            if let Some(l) = p.0.get_mut(k) {
+                *l = *x;
+            }
+        }
+    }
+
+    /// The congruence in lane `k` (zero if `k` ≥ W).
+    #[inline(always)]
+    pub(crate) fn lane(&self, k: usize) -> Congruence<T> {
+        let at = |p: &Pack<T, W>| p.0.get(k).copied().unwrap_or(T::ZERO);
+        Congruence {
+            r: self.r.map(|row| row.map(|p| at(&p))),
+            q: self.q.map(|p| at(&p)),
+        }
+    }
+
+    /// Adds the lower triangle of congruence k applied to `covs[k]` to lane k of `acc`:
+    /// [`transport_lower`] on the packs, the covariances gathered into lanes.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // a gather: lane k of every element, by index
+    pub(crate) fn add_lower(&self, covs: &[&Mat6<T>; W], acc: &mut [[Pack<T, W>; 6]; 6]) {
+        let mut c = [[Pack::zero(); 6]; 6];
+        for i in 0..6 {
+            for j in 0..6 {
+                c[i][j] = Pack::gather(|k| covs[k].0[i][j]);
+            }
+        }
+        transport_lower(&self.r, &self.q, &c, acc);
     }
 }
 
