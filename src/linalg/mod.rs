@@ -84,14 +84,13 @@ impl<T: Real, const N: usize> Vector<T, N> {
         out
     }
 
-    /// Dot product.
+    /// Dot product, summed from the first product in index order (not from zero: the
+    /// optimiser may not drop an added zero, which would turn a −0 sum into +0).
     #[inline]
     pub fn dot(&self, other: &Self) -> T {
-        let mut s = T::ZERO;
-        for (x, y) in self.0.iter().zip(other.0.iter()) {
-            s += *x * *y;
-        }
-        s
+        let mut terms = self.0.iter().zip(other.0.iter()).map(|(x, y)| *x * *y);
+        let first = terms.next().unwrap_or(T::ZERO);
+        terms.fold(first, |s, t| s + t)
     }
 
     /// Squared Euclidean norm.
@@ -325,14 +324,15 @@ impl<T: Real, const R: usize, const C: usize> Matrix<T, R, C> {
         out
     }
 
-    /// Matrix product `self · rhs`.
+    /// Matrix product `self · rhs`, each entry summed from its first product in index
+    /// order (as [`Vector::dot`]).
     #[inline]
     pub fn mul_mat<const K: usize>(&self, rhs: &Matrix<T, C, K>) -> Matrix<T, R, K> {
         let mut out = Matrix::<T, R, K>::zeros();
         for (orow, arow) in out.0.iter_mut().zip(self.0.iter()) {
-            for (a, brow) in arow.iter().zip(rhs.0.iter()) {
+            for (c, (a, brow)) in arow.iter().zip(rhs.0.iter()).enumerate() {
                 for (o, b) in orow.iter_mut().zip(brow.iter()) {
-                    *o += *a * *b;
+                    *o = if c == 0 { *a * *b } else { *o + *a * *b };
                 }
             }
         }

@@ -3,8 +3,8 @@
 //! one of [`Transform`] and [`JointConstants::displacement`] written lane by lane with
 //! the same operations in the same order, so lane k's result is bit-identical to the
 //! scalar computation on configuration k (Rust does not contract `a·b + c` into a fused
-//! multiply-add, and starting sums from zero as the scalar code does keeps even the sign
-//! of a zero). The batch's unit tests (`batch_tests.rs`) compare them bit for bit.
+//! multiply-add, and starting each sum from its first product as the scalar code does
+//! keeps even the sign of a zero). The batch's unit tests (`batch_tests.rs`) compare them bit for bit.
 
 use crate::joint::{Joint, JointConstants};
 use crate::scalar::Real;
@@ -64,25 +64,21 @@ impl<T: Real, const W: usize> Poses<T, W> {
     }
 
     /// `self · rhs` lane by lane, as [`Transform::compose`]: `R·R'` and `R·p' + p`, every
-    /// sum from zero in the order of `Matrix::mul_mat` and `Matrix::mul_vec`.
+    /// sum from its first product in the order of `Matrix::mul_mat` and `Matrix::mul_vec`.
     #[inline(always)]
     pub(super) fn compose(&self, rhs: &Self) -> Self {
         let zero = Pack::splat(T::ZERO);
         let mut r = [[zero; 3]; 3];
         for (orow, arow) in r.iter_mut().zip(&self.r) {
-            for (a, brow) in arow.iter().zip(&rhs.r) {
+            for (c, (a, brow)) in arow.iter().zip(&rhs.r).enumerate() {
                 for (o, b) in orow.iter_mut().zip(brow) {
-                    *o += *a * *b;
+                    *o = if c == 0 { *a * *b } else { *o + *a * *b };
                 }
             }
         }
-        let mut p = [zero; 3];
-        for ((o, arow), t) in p.iter_mut().zip(&self.r).zip(&self.p) {
-            let mut s = zero;
-            for (a, x) in arow.iter().zip(&rhs.p) {
-                s += *a * *x;
-            }
-            *o = s + *t;
+        let mut p = mat_vec(&self.r, &rhs.p);
+        for (o, t) in p.iter_mut().zip(&self.p) {
+            *o += *t;
         }
         Self { r, p }
     }
@@ -148,7 +144,7 @@ fn parts<L: Copy>(s: &[L; 6]) -> ([L; 3], [L; 3]) {
     ([s[0], s[1], s[2]], [s[3], s[4], s[5]])
 }
 
-/// `m·v`, every sum from zero as `Matrix::mul_vec`.
+/// `m·v`, every sum from its first product as `Matrix::mul_vec`.
 #[inline(always)]
 fn mat_vec<T: Real, const W: usize>(
     m: &[[Pack<T, W>; 3]; 3],
@@ -156,9 +152,7 @@ fn mat_vec<T: Real, const W: usize>(
 ) -> [Pack<T, W>; 3] {
     let mut out = [Pack::splat(T::ZERO); 3];
     for (o, row) in out.iter_mut().zip(m) {
-        for (a, x) in row.iter().zip(v) {
-            *o += *a * *x;
-        }
+        *o = row[0] * v[0] + row[1] * v[1] + row[2] * v[2];
     }
     out
 }
