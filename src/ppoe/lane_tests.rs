@@ -7,8 +7,8 @@
 //! The chains are random (a fixed seed) with 1 to 9 joints of every kind, so that with
 //! two and four lanes the last group is full for some and incomplete, padded or (four
 //! lanes, at most half full) transported one lane at a time, for others; a group's lanes
-//! are reused, so stale lanes must not leak into the next group's result. Joints with a zero covariance are skipped
-//! (`zero_covariances_*`).
+//! are reused, so stale lanes must not leak into the next group's result. Joints with a
+//! zero covariance are skipped (`zero_covariances_*`).
 //!
 //! Oracle: the schedules are the same operations on the same values, except that W lanes
 //! sum the transported covariances in W partial sums (added at the end). So pose and

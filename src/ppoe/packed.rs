@@ -4,7 +4,8 @@
 //! the same operations in the same order, so lane k's result is bit-identical to the
 //! scalar computation on configuration k (Rust does not contract `a·b + c` into a fused
 //! multiply-add, and starting each sum from its first product as the scalar code does
-//! keeps even the sign of a zero). The batch's unit tests (`batch_tests.rs`) compare them bit for bit.
+//! keeps even the sign of a zero). The batch's unit tests (`batch_tests.rs`) compare them
+//! bit for bit.
 
 use crate::joint::{Joint, JointConstants};
 use crate::scalar::Real;

@@ -39,21 +39,22 @@
 //! seed's dense f64 PPOE this and the padded tail below cut its instructions from 4418
 //! to 4268 under `lanes_ratio`'s callgrind mode, and more so its loads and stores to the
 //! stack; on x86-64 the time followed the loads and stores more than the instruction
-//! count). Written lane by
-//! lane, a pack is loaded whole right after its lanes were stored one at a time, which
-//! stalls (the store buffer cannot forward one load from two stores); so group k + 1 is
-//! made before group k is transported ([`Sums::run`]), and the stores have long left the
-//! store buffer when the transport loads them. The forward kinematics of the next group,
-//! a chain of dependent products, also runs beside the transports, which do not depend
-//! on it. One lane is the exception: there the congruence goes from the walk straight
-//! to its transport (nothing to pack).
+//! count). Written lane by lane, a pack is loaded whole right after its lanes were
+//! stored one at a time, which stalls (the store buffer cannot forward one load from
+//! two stores); so group k + 1 is made before group k is transported ([`Sums::run`]),
+//! and the stores have long left the store buffer when the transport loads them. The
+//! forward kinematics of the next group, a chain of dependent products, also runs
+//! beside the transports, which do not depend on it. One lane is the exception: there
+//! each joint goes from the walk to its transport through a one-slot group (nothing to
+//! pack; [`Sums::run_one_lane`]).
 //!
 //! Why the last group is padded: when the joint count is not a multiple of W, the empty
 //! lanes of the last group get zero congruences and covariances (exactly zero results).
 //! With two lanes a padded lane costs a whole transport, but so did the alternative, its
 //! joint transported alone one lane at a time (a scalar transport executes as many
 //! instructions as a two-lane one, and on x86-64 `lanes_ratio`'s f64 7-joint chain ran
-//! slower than its 8-joint one). With four lanes one packed transport costs fewer
+//! slower than its 8-joint one with packed congruences and a one-lane tail, a variant
+//! not kept, so no command here reproduces it). With four lanes one packed transport costs fewer
 //! instructions than three scalar ones (a 7-joint f32 chain 5228 instead of 5579 per
 //! PPOE under callgrind, measured with the gathered form) but more than two, so a last
 //! group at most half full runs one lane at a time (the code path of the one-lane
@@ -260,7 +261,8 @@ impl<T: Real, const W: usize> Sums<T, W> {
     /// place ([`Self::IN_PLACE`]) or gathered into one-lane packs. The slot is the form the
     /// firmware's budgets were set with; handing each joint from the walk straight to
     /// its transport compiled to more stack on the Cortex-M targets with an FPU (the
-    /// M4F's f32 PPOE 428 bytes instead of 352).
+    /// M4F's f32 PPOE 428 bytes instead of 352, `scripts/firmware.sh`, with a variant not
+    /// kept).
     #[inline(always)]
     fn run_one_lane<'c, K: Walk<'c, T>>(&mut self, walk: &mut K, zero: &'c Mat6<T>) {
         loop {
@@ -285,13 +287,14 @@ impl<T: Real, const W: usize> Sums<T, W> {
         }
     }
 
-    /// Adds the transports of `group`'s joints (W > 1): in the W lanes together, the
-    /// empty lanes of an incomplete group set to zero congruences and covariances, or,
-    /// with more than two lanes and at most half of them filled, one lane at a time.
+    /// Adds the transports of `group`'s joints (W > 1; [`Self::run`] passes only groups
+    /// with at least one): in the W lanes together, the empty lanes of an incomplete
+    /// group set to zero congruences and covariances, or, with more than two lanes and at
+    /// most half of them filled, one lane at a time.
     #[inline(always)]
     fn add<'c>(&mut self, group: &mut Group<'c, T, W>, zero: &'c Mat6<T>) {
         let filled = group.filled;
-        if filled == W || (filled > 0 && (W == 2 || 2 * filled > W)) {
+        if W == 2 || 2 * filled > W {
             for k in filled..W {
                 group.congruences.set_lane(k, &Congruence::ZERO);
                 if let Some(slot) = group.covs.get_mut(k) {

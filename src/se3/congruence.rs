@@ -166,18 +166,13 @@ impl<T: Real> Congruence<T> {
     ) {
         let mut r = [[Pack::zero(); 3]; 3];
         let mut q = [Pack::zero(); 3];
-        let mut c = [[Pack::zero(); 6]; 6];
         for i in 0..3 {
             for j in 0..3 {
                 r[i][j] = Pack::gather(|k| items[k].0.r[i][j]);
             }
             q[i] = Pack::gather(|k| items[k].0.q[i]);
         }
-        for i in 0..6 {
-            for j in 0..6 {
-                c[i][j] = Pack::gather(|k| items[k].1 .0[i][j]);
-            }
-        }
+        let c = gather_covariances(|k| items[k].1);
         transport_lower(&r, &q, &c, acc);
     }
 }
@@ -228,16 +223,26 @@ impl<T: Real, const W: usize> PackedCongruence<T, W> {
     /// Adds the lower triangle of congruence k applied to `covs[k]` to lane k of `acc`:
     /// [`transport_lower`] on the packs, the covariances gathered into lanes.
     #[inline(always)]
-    #[allow(clippy::needless_range_loop)] // a gather: lane k of every element, by index
     pub(crate) fn add_lower(&self, covs: &[&Mat6<T>; W], acc: &mut [[Pack<T, W>; 6]; 6]) {
-        let mut c = [[Pack::zero(); 6]; 6];
-        for i in 0..6 {
-            for j in 0..6 {
-                c[i][j] = Pack::gather(|k| covs[k].0[i][j]);
-            }
-        }
+        let c = gather_covariances(|k| covs[k]);
         transport_lower(&self.r, &self.q, &c, acc);
     }
+}
+
+/// The W covariances `cov(0)`, …, `cov(W − 1)` side by side: entry (i, j) of covariance k
+/// in lane k of pack (i, j).
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // a gather: lane k of every element, by index
+fn gather_covariances<'c, T: Real + 'c, const W: usize>(
+    cov: impl Fn(usize) -> &'c Mat6<T>,
+) -> [[Pack<T, W>; 6]; 6] {
+    let mut c = [[Pack::zero(); 6]; 6];
+    for i in 0..6 {
+        for j in 0..6 {
+            c[i][j] = Pack::gather(|k| cov(k).0[i][j]);
+        }
+    }
+    c
 }
 
 /// The lower triangle of `diag(R, R)·S·Σ·Sᵀ·diag(R, R)ᵀ`, `S = [[I, 0], [Q, I]]`,
