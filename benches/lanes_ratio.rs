@@ -17,7 +17,9 @@
 //! --collect-atstart=no --toggle-collect='*callgrind_region*' <binary>` counts the
 //! instructions of 1000 calls of one case (`LANES_RATIO_CALLGRIND=list` lists them;
 //! lanes 0 = the target's own choice, `ChainView::ppoe`). `LANES_RATIO_FTZ=1` sets
-//! flush-to-zero first (x86-64), which shows what subnormal values cost.
+//! flush-to-zero first (x86-64), which shows what subnormal values cost;
+//! `LANES_RATIO_FLAGS=1` prints instead which cases and widths raise x86-64's subnormal
+//! flags (tests/subnormal_lanes.rs asserts none for the target's width).
 
 #[path = "baseline_nalgebra.rs"]
 mod baseline_nalgebra;
@@ -281,8 +283,59 @@ fn flush_to_zero() {
 #[cfg(not(target_arch = "x86_64"))]
 fn flush_to_zero() {}
 
+/// With `LANES_RATIO_FLAGS` set (x86-64 only): per case, scalar and lane width, the
+/// MXCSR exception flags a call raised: `D` a subnormal operand, `U` an underflow (a
+/// subnormal or zero result of a nonzero product), in any lane of the SSE registers,
+/// the lanes a width leaves unused included.
+#[cfg(target_arch = "x86_64")]
+#[allow(deprecated)] // _mm_getcsr/_mm_setcsr: the one way to read MXCSR from Rust
+fn subnormal_flags() -> bool {
+    use std::arch::x86_64::{_mm_getcsr, _mm_setcsr};
+    if std::env::var_os("LANES_RATIO_FLAGS").is_none() {
+        return false;
+    }
+    fn raised<T: Real>(c: &Case<T>, l: usize) -> String {
+        let mut c = c.clone();
+        // SAFETY: clearing MXCSR's sticky exception flags changes no result.
+        unsafe { _mm_setcsr(_mm_getcsr() & !0x3f) };
+        // The case's joint values, then 200 others spread over the joints' ranges.
+        for _ in 0..=200 {
+            black_box(call(&c, l));
+            for (i, t) in c.2.iter_mut().enumerate() {
+                *t += T::lit(0.37 + 0.11 * i as f64);
+                *t = if *t > T::lit(3.0) {
+                    *t - T::lit(6.0)
+                } else {
+                    *t
+                };
+            }
+        }
+        let m = unsafe { _mm_getcsr() };
+        let d = if m & 0x02 != 0 { "D" } else { "-" };
+        let u = if m & 0x10 != 0 { "U" } else { "-" };
+        format!("{d}{u}")
+    }
+    println!("case lanes | f64 flags | f32 flags (D: subnormal operand, U: underflow)");
+    for n in CASES {
+        let (a, b) = (case::<f64>(n), case::<f32>(n));
+        for l in LANES {
+            let (fa, fb) = (raised(&a, l), raised(&b, l));
+            println!("{n:10} {l} | {fa} | {fb}");
+        }
+    }
+    true
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+fn subnormal_flags() -> bool {
+    false
+}
+
 fn main() {
     flush_to_zero();
+    if subnormal_flags() {
+        return;
+    }
     if let Ok(which) = std::env::var("LANES_RATIO_CALLGRIND") {
         return callgrind(&which);
     }

@@ -993,7 +993,7 @@ def render(d):
         p("documented per function there): per joint %d multiplies + %d adds, %d divisions, %d square root, %d sin_cos;"
           % (pj["mul"], pj["add"], pj["div"], pj["sqrt"], pj["sin_cos"]))
         p("plus %d + %d after the loop (summing the %d f64 SIMD lanes of the accumulator; a last incomplete"
-          " group runs one lane at a time). 6-DOF total: **%d multiplies + %d adds = %d flops**,"
+          " group is padded with zeros, its empty lanes counted as computed). 6-DOF total: **%d multiplies + %d adds = %d flops**,"
           % (fl["tail"]["mul"], fl["tail"]["add"], fl.get("lanes", 1), t["mul"], t["add"], fl["flops_mul_add"]))
         p("%d divisions, %d square roots, %d sin_cos." % (t["div"], t["sqrt"], t["sin_cos"]))
         p("")
@@ -1149,9 +1149,10 @@ def render(d):
           " a shear-first structured transport accumulated into one triangle (no 6×6 temporaries),"
           " independent transports packed into SIMD lanes (the private lane width, `lanes` in"
           " src/ppoe/schedule.rs: one 128-bit register on SSE2/NEON, 2 f64 lanes, 4 f32 lanes except"
-          " on x86, where f32 runs one), the joints taken in groups whose congruences and covariances are"
-          " gathered into lanes straight from registers (a queue in memory made the gathers wait on"
-          " store forwarding), per-joint displacement constants computed once (`JointConstants`:"
+          " on x86, where f32 runs two), the joints taken in groups whose congruences are written"
+          " into the lanes of packs as they are made and transported one group later (gathered from"
+          " registers they cost loads, shuffles and spills; transported at once, the packs were"
+          " loaded right after their lanes were stored and waited on store forwarding), per-joint displacement constants computed once (`JointConstants`:"
           " ppoe-build's tables carry them; a joint's displacement is then one sin/cos, 19"
           " multiplies and 17 adds), sin/cos inlined (f64: libm's own kernel, the same bits;"
           " a call clobbered every SSE register in the loop), and the f32 sin/cos polynomials"
@@ -1161,18 +1162,19 @@ def render(d):
           " product so that their sin/cos latencies overlap; a branch-free quadrant selection in"
           " the f32 sin/cos (slower: the quadrant branch predicts well); the serial product on"
           " rows packed as 4-lane vectors (slower: packing costs more than it saves); gathering"
-          " only the covariance entries the transport reads (no change); two f32 lanes (computed in"
-          " 4-lane registers whose other lanes were undefined and underflowed into subnormals);"
-          " two f32 joints in four lanes whose other two are zero (slower); the rows of one"
+          " only the covariance entries the transport reads (no change); two f32 lanes gathered"
+          " from registers (computed in 4-lane registers whose other lanes held leftovers that"
+          " underflowed into subnormals; loaded from packs in memory, those lanes hold zeros:"
+          " tests/subnormal_lanes.rs checks the CPU's subnormal flags); two f32 joints in four"
+          " lanes whose other two are zero (slower); the rows of one"
           " transport's matrices in 4-lane packs (`Ad·Σ` row by row, then `(Ad·Σ)·Adᵀ`; the"
           " optimiser scalarised the packs and regrouped them with shuffles, more instructions)."
-          " f32 single calls run one lane on x86: four lanes cost more in gathers and transposes"
-          " than they save. LLVM's SLP vectoriser still packs parts of that one-lane f32 code into"
-          " partial 4-lane SSE operations whose unused lanes can hold subnormals."
+          " f32 single calls run two lanes on x86: four lanes cost more in gathers of the"
+          " covariances than they save (fewer instructions, more time)."
           " `RUSTFLAGS=\"--cfg ppoe_bench_lanes\" cargo bench --bench lanes_ratio` times every lane"
           " width of both scalars interleaved in one process (its own section of this report);"
-          " `LANES_RATIO_FTZ=1` (flush-to-zero) and `RUSTFLAGS=\"-C llvm-args=-vectorize-slp=false\"`"
-          " show what the subnormals and the partial vectors cost.")
+          " `LANES_RATIO_FTZ=1` (flush-to-zero) shows what subnormals cost, `LANES_RATIO_FLAGS=1`"
+          " which widths raise the subnormal flags.")
         nn64, nn32 = c("ppoe_seed/ours_joint_new/f64"), c("ppoe_seed/ours_joint_new/f32")
         if nn64:
             p("- Joints built with `Joint::new` (a `const fn`, which cannot compute the displacement"

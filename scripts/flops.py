@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Floating-point operation count of ppoe's PPOE (ChainView::ppoe, Convention::Right).
 
-A hand count of the source as written (src/ppoe/schedule.rs `ppoe_lanes`, `sum_lanes`;
+A hand count of the source as written (src/ppoe/schedule.rs `ppoe_lanes`, `Sums::total`;
 src/se3/congruence.rs `Congruence::of_inverse`, `transport_lower`, `sandwich_add`,
 `cross_component`; src/joint.rs `JointConstants::displacement`; src/se3/mod.rs
 `Transform::compose`), for joints
@@ -64,13 +64,14 @@ def add(*ds):
 def count(n, lanes=2):
     p = PIECES
     per_joint = add(p["exp"], p["compose"], p["transport"])
-    # After the loop: the W lanes of the 36 accumulated entries are summed (W - 1 adds
-    # each). A last incomplete group of `filled` joints runs packed, its empty lanes counted
-    # as computed, only when W > 2 and it fills more than half of them (src/ppoe/schedule.rs,
-    # `Sums::add`); otherwise its joints run one lane at a time and nothing is padded.
+    # After the loop: the W lanes of the 36 accumulated entries are summed from zero (W
+    # adds each, `Sums::total`). A last incomplete group of `filled` joints runs packed,
+    # its empty lanes counted as computed, when W = 2 or it fills more than half of the W
+    # lanes (src/ppoe/schedule.rs, `Sums::add`); otherwise its joints run one lane at a
+    # time and nothing is padded.
     filled = n % lanes
-    pad = lanes - filled if filled and lanes > 2 and 2 * filled > lanes else 0
-    tail = add(*([p["transport"]] * pad), {"mul": 0, "add": 36 * (lanes - 1)})
+    pad = lanes - filled if filled and (lanes == 2 or 2 * filled > lanes) else 0
+    tail = add(*([p["transport"]] * pad), {"mul": 0, "add": 36 * lanes})
     total = add(*([per_joint] * n), tail)
     return per_joint, tail, total
 

@@ -16,7 +16,7 @@
 //! the order of the chain) in the same order (`packed.rs` says how), so for finite
 //! inputs a configuration's result does not depend on its position in the batch, on the
 //! batch's length or on W. It equals [`ChainView::ppoe`] exactly where that call runs one
-//! lane (Cortex-M, RISC-V without vector units, f32 on x86); elsewhere the single call
+//! lane (Cortex-M, RISC-V without vector units); elsewhere the single call
 //! sums its joint lanes separately, and the two differ by a few ε of ‖Σ‖ (the unit tests in
 //! `batch_tests.rs` beside this file check both statements). A last group of fewer than
 //! W configurations fills its empty lanes with its last configuration, whose duplicates
@@ -490,7 +490,7 @@ impl<T: Real> ChainView<'_, T> {
     /// the lanes of SIMD registers (the module `batch.rs` of this package says why). The
     /// result of a configuration is bit-identical for finite inputs wherever it stands in
     /// any batch; it equals a single [`ChainView::ppoe`] call exactly where that call
-    /// runs one lane (Cortex-M, RISC-V, f32 on x86) and within a few ε of ‖Σ‖ elsewhere
+    /// runs one lane (Cortex-M, RISC-V) and within a few ε of ‖Σ‖ elsewhere
     /// (the single call sums its lanes in another order). Same accuracy as
     /// [`ChainView::ppoe`].
     ///

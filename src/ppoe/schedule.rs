@@ -7,28 +7,37 @@
 //! computation on [`Pack`]s of W scalars, which the optimiser maps to SIMD registers
 //! where the target has them (SSE2, NEON, wasm simd128): no shuffle is needed inside a
 //! transport. [`lanes`] chooses W per scalar and target: f64 as many as fill one
-//! 128-bit vector where the target has them (2), f32 one on x86 and four (a whole
+//! 128-bit vector where the target has them (2), f32 two on x86 and four (a whole
 //! vector) on the other SIMD targets, else 1 (Cortex-M: a scalar FPU, where lanes would
 //! only add register pressure).
 //!
-//! Why f32 runs one lane on x86: its four-lane groups gather every congruence and
-//! covariance entry of four joints into a register (four loads and three shuffles each,
-//! where f64's two lanes need two), and on x86-64 the one-lane f32 PPOE ran faster than
-//! the four-lane one although it executes more instructions (the `lanes_ratio`
-//! benchmark times every width; BENCHMARKS.md, shipped with this package, gives the
-//! figures). Never two f32 lanes: they are computed in 4-lane registers whose other two
-//! lanes the program leaves undefined (leftovers of earlier code), and on a core with a
-//! slow path for subnormals the two-lane f32 PPOE ran 1.2-1.3x slower than f64 (0.9x
-//! with flush-to-zero set): f32's narrow range underflows in the undefined lanes.
-//! Nor two f32 joints in four lanes whose other two are zero (slower still), nor one
-//! transport with its matrices' rows in lanes (`Ad·Σ` as combinations of Σ's rows, then
-//! `(Ad·Σ)·Adᵀ` as combinations of Adᵀ's): the optimiser splits such packs into scalars
-//! and regroups them with shuffles, and the PPOE executed more instructions. Nor with the
-//! rows of the 3×3 blocks in four-lane packs (three entries and a zero, one SSE register
-//! each): every product needs an entry broadcast to all lanes (a shuffle) and, in SSE's
-//! two-operand form, a copy; a prototype (not kept, so no command here reproduces it)
-//! executed 5710 instructions for the seed's dense f32 PPOE instead of 4859 under
-//! `lanes_ratio`'s callgrind mode.
+//! Why f32 runs two lanes on x86: its four-lane groups gather every covariance entry
+//! of four joints into a register (four loads and three shuffles each, where two lanes
+//! need two) and write every congruence entry into four lanes, and on x86-64 the
+//! four-lane f32 PPOE ran slower than the two-lane one although it executes fewer
+//! instructions, and slower than f64 (the `lanes_ratio` benchmark times every width;
+//! BENCHMARKS.md, shipped with this package, gives the figures). Two f32 lanes are
+//! computed in 4-lane registers whose other two lanes the program does not define. When
+//! the congruences were gathered into lanes from registers, those lanes held leftovers
+//! of earlier code, which underflowed into subnormals: on a core with a slow path for
+//! them the two-lane f32 PPOE ran 1.2-1.3x slower than f64 (0.9x with flush-to-zero
+//! set), and f32 ran one lane on x86 instead. Packs now reach the registers from memory
+//! ([`PackedCongruence`] below, the covariances loaded entry by entry), and loads fill
+//! the other lanes with zeros: the test `tests/subnormal_lanes.rs` checks that an f32
+//! and f64 PPOE raise no subnormal-operand and no underflow flag in any lane (x86-64's
+//! MXCSR), and `lanes_ratio` with `LANES_RATIO_FLAGS` set shows the same per width.
+//!
+//! Not kept: two f32 joints in four lanes whose other two are zero (a prototype with
+//! packed congruences, not kept, so no command here reproduces it, executed 5408
+//! instructions for the seed's dense f32 PPOE instead of two lanes' 4152 under
+//! `lanes_ratio`'s callgrind mode, and ran 1.5x slower); one transport with its
+//! matrices' rows in lanes (`Ad·Σ` as combinations of Σ's rows, then `(Ad·Σ)·Adᵀ` as
+//! combinations of Adᵀ's): the optimiser splits such packs into scalars and regroups
+//! them with shuffles, and the PPOE executed more instructions; the rows of the 3×3
+//! blocks in four-lane packs (three entries and a zero, one SSE register each): every
+//! product needs an entry broadcast to all lanes (a shuffle) and, in SSE's two-operand
+//! form, a copy; a prototype (not kept) executed 5710 instructions for the seed's dense
+//! f32 PPOE instead of 4859 (one lane, then) under `lanes_ratio`'s callgrind mode.
 //!
 //! Why congruences are written into packs, one group ahead: the joints go in groups of
 //! W, and each joint's congruence is written into lane k of the group's packs
@@ -77,10 +86,10 @@
 //! The rounding: with W lanes the transported covariances are summed in W partial sums,
 //! added at the end (`Sums::total`), so results of different widths differ by a few ε of
 //! the covariance's size. Every width is compiled and compared on every host by the unit
-//! tests (`lane_tests.rs` beside this file), so the one-lane schedule is tested by
-//! `cargo test` (in the form of the SIMD hosts, see `Sums::IN_PLACE`; the scalar-FPU targets'
-//! form runs in QEMU); the `lanes_ratio` benchmark
-//! times them (built with `--cfg ppoe_bench_lanes`, see `with_lanes`).
+//! tests (`lane_tests.rs` beside this file), so the one-lane schedule of the scalar-FPU
+//! targets is tested by `cargo test` on the host too (and runs in QEMU); the
+//! `lanes_ratio` benchmark times them (built with `--cfg ppoe_bench_lanes`, see
+//! `with_lanes`).
 //!
 //! Private because it is a performance decision with no effect on the result's
 //! definition: the public entry points and their accuracy do not change when it changes;
@@ -112,11 +121,11 @@ pub(super) const fn simd_lanes<T: Real>() -> usize {
 }
 
 /// How many transports the single-call PPOE computes side by side for scalar `T` on this
-/// target (see the module doc): [`simd_lanes`], except f32 on x86 (one lane).
+/// target (see the module doc): [`simd_lanes`], except f32 on x86 (two lanes).
 const fn lanes<T: Real>() -> usize {
     const X86: bool = cfg!(any(target_arch = "x86", target_arch = "x86_64"));
     match core::mem::size_of::<T>() {
-        4 if X86 => 1,
+        4 if X86 && SIMD128 => 2,
         _ => simd_lanes::<T>(),
     }
 }
@@ -216,24 +225,16 @@ fn ppoe_lanes<T: Real, const W: usize>(
 
 /// The lower triangles of the transported covariances, summed: W partial sums in lanes,
 /// and one for the joints transported one lane at a time (with four lanes, those of a
-/// last group at most half full; with one lane on a SIMD target, every joint).
+/// last group at most half full).
 struct Sums<T, const W: usize> {
     lanes: [[Pack<T, W>; 6]; 6],
     tail: [[T; 6]; 6],
 }
 
 impl<T: Real, const W: usize> Sums<T, W> {
-    /// One lane on a SIMD target (f32 on x86-64): each transport reads its covariance in
-    /// place and goes to the tail, the lanes stay zero. Gathered into one-lane packs, the
-    /// covariance was copied to the stack and read back by loads spanning two of the
-    /// copy's stores (store-forwarding stalls, every joint). Not on the scalar-FPU
-    /// targets: there the gathered form compiled to less stack for software f64 (the
-    /// firmware's budgets).
-    const IN_PLACE: bool = W == 1 && SIMD128;
-
-    /// Whether the tail is ever added to: with one lane in place, and with more than
-    /// two lanes (a last group at most half full). Else it stays zero, and is not read.
-    const TAIL: bool = Self::IN_PLACE || W > 2;
+    /// Whether the tail is ever added to: with more than two lanes (a last group at most
+    /// half full). Else it stays zero, and is not read.
+    const TAIL: bool = W > 2;
 
     /// Runs `walk` to its end. One lane: each joint's transport as it comes
     /// ([`Self::run_one_lane`]). More: one group at a time, each group's transports after
@@ -257,12 +258,11 @@ impl<T: Real, const W: usize> Sums<T, W> {
         }
     }
 
-    /// [`Self::run`] with one lane: each joint through a one-slot group, transported in
-    /// place ([`Self::IN_PLACE`]) or gathered into one-lane packs. The slot is the form the
-    /// firmware's budgets were set with; handing each joint from the walk straight to
-    /// its transport compiled to more stack on the Cortex-M targets with an FPU (the
-    /// M4F's f32 PPOE 428 bytes instead of 352, `scripts/firmware.sh`, with a variant not
-    /// kept).
+    /// [`Self::run`] with one lane (the scalar-FPU targets): each joint through a
+    /// one-slot group, gathered into one-lane packs. The slot is the form the firmware's
+    /// budgets were set with; handing each joint from the walk straight to its transport
+    /// compiled to more stack on the Cortex-M targets with an FPU (the M4F's f32 PPOE 428
+    /// bytes instead of 352, `scripts/firmware.sh`, with a variant not kept).
     #[inline(always)]
     fn run_one_lane<'c, K: Walk<'c, T>>(&mut self, walk: &mut K, zero: &'c Mat6<T>) {
         loop {
@@ -277,13 +277,7 @@ impl<T: Real, const W: usize> Sums<T, W> {
             if filled == 0 {
                 return;
             }
-            if Self::IN_PLACE {
-                if let Some((c, cov)) = group.first() {
-                    c.add_lower(cov, &mut self.tail);
-                }
-            } else {
-                Congruence::add_lower_packed(&group, &mut self.lanes);
-            }
+            Congruence::add_lower_packed(&group, &mut self.lanes);
         }
     }
 
@@ -313,9 +307,6 @@ impl<T: Real, const W: usize> Sums<T, W> {
     /// The sum over the lanes and the tail, mirrored: exactly symmetric.
     #[inline(always)]
     fn total(&self) -> Mat6<T> {
-        if Self::IN_PLACE {
-            return mirror_lower(self.tail);
-        }
         let mut acc = [[T::ZERO; 6]; 6];
         for ((arow, lrow), trow) in acc.iter_mut().zip(&self.lanes).zip(&self.tail) {
             for ((a, l), t) in arow.iter_mut().zip(lrow).zip(trow) {
