@@ -11,12 +11,12 @@
 //! vector) on the other SIMD targets, else 1 (Cortex-M: a scalar FPU, where lanes would
 //! only add register pressure).
 //!
-//! Why f32 runs two lanes on x86: its four-lane groups gather every covariance entry
-//! of four joints into a register (four loads and three shuffles each, where two lanes
-//! need two) and write every congruence entry into four lanes, and on x86-64 the
-//! four-lane f32 PPOE ran slower than the two-lane one although it executes fewer
-//! instructions, and slower than f64 (the `lanes_ratio` benchmark times every width;
-//! BENCHMARKS.md, shipped with this package, gives the figures). Two f32 lanes are
+//! Why f32 runs two lanes on x86: measured. On x86-64 the four-lane f32 PPOE executes
+//! fewer instructions than the two-lane one but ran slower, and slower than f64 (the
+//! `lanes_ratio` benchmark times every width; BENCHMARKS.md, shipped with this package,
+//! gives the figures). Its groups gather every covariance entry of four joints into a
+//! register (four loads and three shuffles each, where two lanes need two), the likely
+//! cost; it was not isolated. Two f32 lanes are
 //! computed in 4-lane registers whose other two lanes the program does not define. When
 //! the congruences were gathered into lanes from registers, those lanes held leftovers
 //! of earlier code, which underflowed into subnormals: on a core with a slow path for
