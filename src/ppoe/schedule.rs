@@ -67,7 +67,15 @@
 //! instructions than three scalar ones (a 7-joint f32 chain 5228 instead of 5579 per
 //! PPOE under callgrind, measured with the gathered form) but more than two, so a last
 //! group at most half full runs one lane at a time (the code path of the one-lane
-//! targets).
+//! targets). Also not kept (no command here reproduces it): a lone joint in two lanes
+//! by blocks (the sandwiches of its upper-left and sheared lower-right blocks side by
+//! side, the lower-left block's columns 0 and 1 in lanes; entry by entry the same
+//! operations). Under `lanes_ratio`'s callgrind mode, as a branch in [`Sums::add`] it
+//! cost the seed's dense f64 PPOE 4270 instructions instead of 4099 and the 7-joint arm
+//! 5368 instead of 5267; with the last group taken out of the loop the arm executed 5140
+//! (5539 padded in that loop), yet ran slower than the padded loop here (its closed-form
+//! port/ppoe ratio 2.70-2.77 against 2.89-2.91, same session), and slower still when
+//! the lone joint was transported first.
 //!
 //! Why joints with a zero covariance are skipped: fixed or noiseless joints are common,
 //! and their transport adds exactly zero; the check (a scan that stops at the first
