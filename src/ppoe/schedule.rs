@@ -73,9 +73,10 @@
 //! operations). Under `lanes_ratio`'s callgrind mode, as a branch in [`Sums::add`] it
 //! cost the seed's dense f64 PPOE 4270 instructions instead of 4099 and the 7-joint arm
 //! 5368 instead of 5267; with the last group taken out of the loop the arm executed 5140
-//! (5539 padded in that loop), yet ran slower than the padded loop here (its closed-form
-//! port/ppoe ratio 2.70-2.77 against 2.89-2.91, same session), and slower still when
-//! the lone joint was transported first.
+//! (5539 padded in that loop), yet ran slower than the padded loop here (`lanes_ratio`
+//! `61 2000`, three runs alternating with the kept code: 375, 378 and 527 ns per call
+//! against 356, 346 and 348), and slower still when the lone joint was transported
+//! first.
 //!
 //! Why joints with a zero covariance are skipped: fixed or noiseless joints are common,
 //! and their transport adds exactly zero; the check (a scan that stops at the first
