@@ -75,8 +75,9 @@
 //! 5368 instead of 5267; with the last group taken out of the loop the arm executed 5140
 //! (5539 padded in that loop), yet ran slower than the padded loop here (`lanes_ratio`
 //! `61 2000`, three runs alternating with the kept code: 375, 378 and 527 ns per call
-//! against 356, 346 and 348), and slower still when the lone joint was transported
-//! first.
+//! against 356, 346 and 348; the third under load, the closed-form port there 1299 ns
+//! against 1007-1046 in the others), and slower still when the lone joint was
+//! transported first.
 //!
 //! Why joints with a zero covariance are skipped: fixed or noiseless joints are common,
 //! and their transport adds exactly zero; the check (a scan that stops at the first
